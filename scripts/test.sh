@@ -1,0 +1,6 @@
+#!/usr/bin/env bash
+# Set up, build (Release) and run the whole test suite through CTest.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/build.sh
+cd build && ctest --output-on-failure -j"$(nproc)"

@@ -1,0 +1,125 @@
+// JSON parsing with file:line:column syntax errors and pointer-named semantic errors.
+#include "core/json_reader.h"
+#include <sstream>
+
+namespace caustica {
+
+nlohmann::json parse_json_text(const std::string& text, const std::string& file) {
+  try {
+    return nlohmann::json::parse(text, nullptr, true, /*ignore_comments=*/true);
+  } catch (const nlohmann::json::parse_error& e) {
+    // e.byte is the 1-based offset of the character where parsing stopped.
+    const size_t stop = std::min<size_t>(e.byte > 0 ? e.byte - 1 : 0, text.size());
+    size_t line = 1, line_start = 0;
+    for (size_t i = 0; i < stop; ++i) {
+      if (text[i] == '\n') {
+        ++line;
+        line_start = i + 1;
+      }
+    }
+    const size_t column = stop - line_start + 1;
+    std::string what = e.what();
+    const size_t s = what.find("syntax error");
+    if (s != std::string::npos) what = what.substr(s);
+    size_t line_end = text.find('\n', line_start);
+    if (line_end == std::string::npos) line_end = text.size();
+    std::string source_line = text.substr(line_start, std::min<size_t>(line_end - line_start, 200));
+    for (char& c : source_line) {
+      if (static_cast<unsigned char>(c) < 32 || static_cast<unsigned char>(c) > 126) c = '?';
+    }
+    std::ostringstream msg;
+    msg << file << ":" << line << ":" << column << ": " << what;
+    if (!source_line.empty()) {
+      msg << "\n  " << source_line << "\n  " << std::string(std::min<size_t>(column - 1, 200), ' ') << "^";
+    }
+    throw InputError(msg.str());
+  }
+}
+
+void JsonReader::fail(const std::string& pointer, const std::string& message) const {
+  throw InputError(file_ + ": " + (pointer.empty() ? "/" : pointer) + ": " + message);
+}
+
+void JsonReader::warn(const std::string& pointer, const std::string& message, std::vector<std::string>& out) const {
+  out.push_back(file_ + ": " + (pointer.empty() ? "/" : pointer) + ": " + message);
+}
+
+static std::string type_name(const nlohmann::json& v) { return v.type_name(); }
+
+void JsonReader::check_object(const nlohmann::json& obj, const std::string& pointer,
+                              std::initializer_list<const char*> known) const {
+  if (!obj.is_object()) fail(pointer, "expected an object, found " + type_name(obj));
+  for (auto it = obj.begin(); it != obj.end(); ++it) {
+    bool ok = false;
+    for (const char* k : known) ok = ok || it.key() == k;
+    if (!ok) {
+      std::string list;
+      for (const char* k : known) list += (list.empty() ? "" : ", ") + std::string(k);
+      fail(child(pointer, it.key()), "unknown key \"" + it.key() + "\" (known: " + list + ")");
+    }
+  }
+}
+
+const nlohmann::json& JsonReader::require(const nlohmann::json& obj, const std::string& pointer, const char* key) const {
+  auto it = obj.find(key);
+  if (it == obj.end()) fail(pointer, std::string("missing required key \"") + key + "\"");
+  return *it;
+}
+
+double JsonReader::number(const nlohmann::json& v, const std::string& pointer) const {
+  if (!v.is_number()) fail(pointer, "expected a number, found " + type_name(v));
+  const double d = v.get<double>();
+  if (!std::isfinite(d)) fail(pointer, "number is not finite");
+  return d;
+}
+
+double JsonReader::number_in(const nlohmann::json& v, const std::string& pointer, double lo, double hi) const {
+  const double d = number(v, pointer);
+  if (d < lo || d > hi) {
+    std::ostringstream m;
+    m << "value " << d << " is out of range [" << lo << ", " << hi << "]";
+    fail(pointer, m.str());
+  }
+  return d;
+}
+
+int64_t JsonReader::integer(const nlohmann::json& v, const std::string& pointer, int64_t lo, int64_t hi) const {
+  if (!v.is_number_integer()) fail(pointer, "expected an integer, found " + type_name(v));
+  const int64_t i = v.is_number_unsigned() && v.get<uint64_t>() > uint64_t(INT64_MAX) ? INT64_MAX : v.get<int64_t>();
+  if (i < lo || i > hi) {
+    fail(pointer, "value " + std::to_string(i) + " is out of range [" + std::to_string(lo) + ", " +
+                      std::to_string(hi) + "]");
+  }
+  return i;
+}
+
+bool JsonReader::boolean(const nlohmann::json& v, const std::string& pointer) const {
+  if (!v.is_boolean()) fail(pointer, "expected true or false, found " + type_name(v));
+  return v.get<bool>();
+}
+
+std::string JsonReader::string(const nlohmann::json& v, const std::string& pointer) const {
+  if (!v.is_string()) fail(pointer, "expected a string, found " + type_name(v));
+  return v.get<std::string>();
+}
+
+Vec3 JsonReader::vec3(const nlohmann::json& v, const std::string& pointer) const {
+  if (!v.is_array() || v.size() != 3) fail(pointer, "expected an array of 3 numbers");
+  return Vec3(static_cast<float>(number(v[0], child(pointer, 0))),
+              static_cast<float>(number(v[1], child(pointer, 1))),
+              static_cast<float>(number(v[2], child(pointer, 2))));
+}
+
+Color JsonReader::color(const nlohmann::json& v, const std::string& pointer) const {
+  if (v.is_number()) {
+    const float c = static_cast<float>(number_in(v, pointer, 0.0, 1e9));
+    return Color(c);
+  }
+  const Vec3 c = vec3(v, pointer);
+  for (int i = 0; i < 3; ++i) {
+    if (c[i] < 0.0f) fail(child(pointer, size_t(i)), "colour components must not be negative");
+  }
+  return c;
+}
+
+}  // namespace caustica

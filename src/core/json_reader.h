@@ -1,0 +1,51 @@
+// Typed, validated reads from a JSON document that name the file and JSON pointer on error.
+#pragma once
+#include <initializer_list>
+#include <stdexcept>
+#include <string>
+#include <vector>
+#include <nlohmann/json.hpp>
+#include "core/math.h"
+
+namespace caustica {
+
+// Bad input of any kind (scene file, command line, image file): the message is for the user.
+class InputError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Parses JSON text; a syntax error becomes "file:line:column: message" with the line and a caret.
+nlohmann::json parse_json_text(const std::string& text, const std::string& file);
+
+class JsonReader {
+ public:
+  explicit JsonReader(std::string file) : file_(std::move(file)) {}
+  const std::string& file() const { return file_; }
+
+  [[noreturn]] void fail(const std::string& pointer, const std::string& message) const;
+  void warn(const std::string& pointer, const std::string& message, std::vector<std::string>& out) const;
+
+  // Every key of `obj` must be in `known`; an object is required.
+  void check_object(const nlohmann::json& obj, const std::string& pointer,
+                    std::initializer_list<const char*> known) const;
+  const nlohmann::json& require(const nlohmann::json& obj, const std::string& pointer, const char* key) const;
+
+  double number(const nlohmann::json& v, const std::string& pointer) const;  // finite
+  double number_in(const nlohmann::json& v, const std::string& pointer, double lo, double hi) const;
+  int64_t integer(const nlohmann::json& v, const std::string& pointer, int64_t lo, int64_t hi) const;
+  bool boolean(const nlohmann::json& v, const std::string& pointer) const;
+  std::string string(const nlohmann::json& v, const std::string& pointer) const;
+  Vec3 vec3(const nlohmann::json& v, const std::string& pointer) const;
+  Color color(const nlohmann::json& v, const std::string& pointer) const;  // non-negative
+
+ private:
+  std::string file_;
+};
+
+inline std::string child(const std::string& pointer, const std::string& key) { return pointer + "/" + key; }
+inline std::string child(const std::string& pointer, size_t index) {
+  return pointer + "/" + std::to_string(index);
+}
+
+}  // namespace caustica

@@ -1,0 +1,72 @@
+// Lights: sampled for shadow rays (next-event estimation) and for photon emission.
+#pragma once
+#include <memory>
+#include <vector>
+#include "core/sampling.h"
+#include "core/shape.h"
+
+namespace caustica {
+
+// A point on a light seen from a shading point.
+struct LightSample {
+  Vec3 p;         // point on the light
+  Vec3 n;         // its normal (zero for a point light)
+  Vec3 wi;        // unit direction from the shading point to p
+  float dist = 0; // distance to p
+  Color weight;   // incident radiance / solid-angle pdf (Le cos_l / (d^2 pdf_A), or I / d^2)
+};
+
+// A photon leaving a light.
+struct EmittedPhoton {
+  Vec3 origin;
+  Vec3 normal;  // zero for a point light
+  Vec3 dir;
+  Color flux;  // the light's power when one photon is emitted: Le cos / (pdf_A pdf_w)
+};
+
+class Light {
+ public:
+  virtual ~Light() = default;
+  virtual bool sample_li(const Vec3& x, const Vec2& u, LightSample& s) const = 0;
+  virtual EmittedPhoton sample_emission(const Vec2& u_pos, const Vec2& u_dir) const = 0;
+  virtual Color power() const = 0;
+  virtual bool is_delta() const = 0;
+  virtual Bounds bounds() const = 0;
+};
+
+// Any emissive shape: triangles (from a quad or mesh) or a sphere, sampled uniformly by area,
+// emitting Le on the front side only.
+class AreaLight final : public Light {
+ public:
+  AreaLight(std::vector<Primitive> shapes, const Color& radiance);
+  bool sample_li(const Vec3& x, const Vec2& u, LightSample& s) const override;
+  EmittedPhoton sample_emission(const Vec2& u_pos, const Vec2& u_dir) const override;
+  Color power() const override { return kPi * area_ * radiance_; }
+  bool is_delta() const override { return false; }
+  Bounds bounds() const override;
+  float area() const { return area_; }
+  const Color& radiance() const { return radiance_; }
+
+ private:
+  Vec3 sample_point(Vec2 u, Vec3& n) const;
+  std::vector<Primitive> shapes_;
+  Distribution1D by_area_;
+  Color radiance_;
+  float area_ = 0;
+};
+
+class PointLight final : public Light {
+ public:
+  PointLight(const Vec3& position, const Color& intensity) : position_(position), intensity_(intensity) {}
+  bool sample_li(const Vec3& x, const Vec2& u, LightSample& s) const override;
+  EmittedPhoton sample_emission(const Vec2& u_pos, const Vec2& u_dir) const override;
+  Color power() const override { return 4.0f * kPi * intensity_; }
+  bool is_delta() const override { return true; }
+  Bounds bounds() const override;
+
+ private:
+  Vec3 position_;
+  Color intensity_;
+};
+
+}  // namespace caustica

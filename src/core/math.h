@@ -1,0 +1,70 @@
+// Vectors, colours, rays and orthonormal frames on GLM (single precision).
+#pragma once
+#include <glm/glm.hpp>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace caustica {
+
+using Vec3 = glm::vec3;
+using Vec2 = glm::vec2;
+using Color = glm::vec3;
+
+constexpr float kPi = 3.14159265358979323846f;
+constexpr float kInvPi = 1.0f / kPi;
+constexpr float kInfinity = std::numeric_limits<float>::infinity();
+
+inline float max_component(const Vec3& v) { return std::max(v.x, std::max(v.y, v.z)); }
+inline float luminance(const Color& c) { return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b; }
+inline float average(const Color& c) { return (c.r + c.g + c.b) / 3.0f; }
+inline bool is_black(const Color& c) { return c.r == 0.0f && c.g == 0.0f && c.b == 0.0f; }
+inline bool is_finite(const Vec3& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+struct Ray {
+  Vec3 origin;
+  Vec3 dir;  // unit length
+  float tmax = kInfinity;
+  Vec3 at(float t) const { return origin + t * dir; }
+};
+
+// Offsets a point leaving a surface so that the new ray does not hit the surface again.
+// The offset grows with the coordinates' magnitude, where float rounding grows too.
+inline Vec3 offset_origin(const Vec3& p, const Vec3& n, const Vec3& dir) {
+  const float scale = 1.0f + std::max(std::abs(p.x), std::max(std::abs(p.y), std::abs(p.z)));
+  const float eps = 2e-5f * scale;
+  return glm::dot(dir, n) >= 0.0f ? p + eps * n : p - eps * n;
+}
+
+inline Ray spawn_ray(const Vec3& p, const Vec3& n, const Vec3& dir) {
+  return Ray{offset_origin(p, n, dir), dir, kInfinity};
+}
+
+// Shadow ray from a surface point p (normal n) to a target point q (normal nq, or zero).
+inline Ray spawn_ray_to(const Vec3& p, const Vec3& n, const Vec3& q, const Vec3& nq) {
+  Vec3 d = q - p;
+  const Vec3 o = offset_origin(p, n, d);
+  const Vec3 target = glm::dot(nq, nq) > 0.0f ? offset_origin(q, nq, o - q) : q;
+  d = target - o;
+  const float len = glm::length(d);
+  return Ray{o, d / len, len};
+}
+
+// Orthonormal frame around a unit normal (Duff et al. 2017, "Building an orthonormal basis, revisited").
+struct Frame {
+  Vec3 s, t, n;
+  Frame() : s(1, 0, 0), t(0, 1, 0), n(0, 0, 1) {}
+  explicit Frame(const Vec3& normal) : n(normal) {
+    const float sign = std::copysign(1.0f, n.z);
+    const float a = -1.0f / (sign + n.z);
+    const float b = n.x * n.y * a;
+    s = Vec3(1.0f + sign * n.x * n.x * a, sign * b, -sign * n.x);
+    t = Vec3(b, sign + n.y * n.y * a, -n.y);
+  }
+  Vec3 to_local(const Vec3& v) const { return Vec3(glm::dot(v, s), glm::dot(v, t), glm::dot(v, n)); }
+  Vec3 to_world(const Vec3& v) const { return v.x * s + v.y * t + v.z * n; }
+};
+
+}  // namespace caustica

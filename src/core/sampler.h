@@ -1,0 +1,20 @@
+// Per-sample random stream plus a counter of rays traced (for statistics).
+#pragma once
+#include "core/math.h"
+#include "core/rng.h"
+
+namespace caustica {
+
+struct Sampler {
+  Rng rng;
+  uint64_t rays = 0;
+  Sampler() = default;
+  explicit Sampler(uint64_t seed) : rng(seed) {}
+  float next1d() { return rng.next_float(); }
+  Vec2 next2d() {
+    const float a = rng.next_float();
+    return Vec2(a, rng.next_float());
+  }
+};
+
+}  // namespace caustica

@@ -1,0 +1,67 @@
+// The scene: camera, materials, lights, geometry in a BVH, render settings and the raw
+// integrator block (the integrator reads and validates its own settings).
+#pragma once
+#include <memory>
+#include <string>
+#include <vector>
+#include <nlohmann/json.hpp>
+#include "core/bvh.h"
+#include "core/camera.h"
+#include "core/light.h"
+#include "core/material.h"
+
+namespace caustica {
+
+struct RenderSettings {
+  int width = 512;
+  int height = 512;
+  int spp = 16;
+  uint64_t seed = 0;
+  int max_depth = 16;
+};
+
+// Where a JSON block came from, so that later readers can name file and JSON pointer.
+struct JsonSource {
+  nlohmann::json value = nlohmann::json::object();
+  std::string file;     // scene file name, for messages
+  std::string pointer;  // JSON pointer of `value` inside the file
+};
+
+struct SurfaceHit {
+  Vec3 p;
+  Vec3 n;  // geometric normal (front side = emitting / outside), unit length
+  float t = kInfinity;
+  const Material* material = nullptr;
+  int32_t light = -1;
+  Frame frame;  // around n
+};
+
+class Scene {
+ public:
+  Camera camera;
+  RenderSettings render;
+  std::string integrator_type = "path";
+  JsonSource integrator_settings;  // the integrator block without "type"
+  std::string source_file;
+
+  std::vector<std::unique_ptr<Material>> materials;
+  std::vector<std::string> material_names;
+  std::vector<std::unique_ptr<Light>> lights;
+
+  // Builds the BVH over the primitives and the light-selection distribution (by power).
+  void build(std::vector<Primitive> prims);
+  bool intersect(const Ray& ray, SurfaceHit& hit) const;
+  bool occluded(const Ray& ray) const { return bvh_.occluded(ray); }
+  // Chooses a light in proportion to its power.
+  const Light* sample_light(float u, float& pmf) const;
+  float light_pmf(size_t i) const { return light_distribution_.pmf(i); }
+  const Bvh& bvh() const { return bvh_; }
+  Bounds bounds() const { return bounds_; }
+
+ private:
+  Bvh bvh_;
+  Distribution1D light_distribution_;
+  Bounds bounds_;
+};
+
+}  // namespace caustica

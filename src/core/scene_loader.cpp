@@ -1,0 +1,310 @@
+// Scene file loader: every key validated, every error located by file and JSON pointer.
+#include "core/scene_loader.h"
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <tiny_obj_loader.h>
+#include "core/json_reader.h"
+
+namespace caustica {
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+struct Loader {
+  JsonReader r;
+  std::string base_dir;
+  LoadedScene out;
+  std::map<std::string, uint32_t> material_ids;
+  std::vector<Primitive> prims;
+
+  Scene& scene() { return *out.scene; }
+
+  void load(const json& doc) {
+    r.check_object(doc, "", {"camera", "render", "integrator", "materials", "objects", "lights"});
+    if (doc.contains("render")) read_render(doc["render"], "/render");
+    read_camera(r.require(doc, "", "camera"), "/camera");
+    if (doc.contains("integrator")) read_integrator(doc["integrator"], "/integrator");
+    read_materials(r.require(doc, "", "materials"), "/materials");
+    const json& objects = r.require(doc, "", "objects");
+    if (!objects.is_array()) r.fail("/objects", "expected an array of objects");
+    for (size_t i = 0; i < objects.size(); ++i) read_object(objects[i], child("/objects", i));
+    if (doc.contains("lights")) {
+      const json& lights = doc["lights"];
+      if (!lights.is_array()) r.fail("/lights", "expected an array of lights");
+      for (size_t i = 0; i < lights.size(); ++i) read_light(lights[i], child("/lights", i));
+    }
+    if (prims.empty()) r.fail("/objects", "the scene has no geometry");
+    if (scene().lights.empty()) {
+      r.warn("", "the scene has no lights (no emissive material, no point light): the image will be black",
+             out.warnings);
+    }
+    scene().build(std::move(prims));
+  }
+
+  void read_render(const json& j, const std::string& p) {
+    r.check_object(j, p, {"width", "height", "spp", "seed", "max_depth"});
+    RenderSettings& rs = scene().render;
+    if (j.contains("width")) rs.width = int(r.integer(j["width"], child(p, "width"), 1, 16384));
+    if (j.contains("height")) rs.height = int(r.integer(j["height"], child(p, "height"), 1, 16384));
+    if (j.contains("spp")) rs.spp = int(r.integer(j["spp"], child(p, "spp"), 1, 1 << 24));
+    if (j.contains("seed")) rs.seed = uint64_t(r.integer(j["seed"], child(p, "seed"), 0, INT64_MAX));
+    if (j.contains("max_depth")) rs.max_depth = int(r.integer(j["max_depth"], child(p, "max_depth"), 1, 1024));
+  }
+
+  void read_camera(const json& j, const std::string& p) {
+    r.check_object(j, p, {"position", "look_at", "up", "fov"});
+    const Vec3 pos = r.vec3(r.require(j, p, "position"), child(p, "position"));
+    const Vec3 at = r.vec3(r.require(j, p, "look_at"), child(p, "look_at"));
+    const Vec3 up = j.contains("up") ? r.vec3(j["up"], child(p, "up")) : Vec3(0, 1, 0);
+    const float fov = j.contains("fov") ? float(r.number_in(j["fov"], child(p, "fov"), 0.1, 179.0)) : 45.0f;
+    if (glm::length(at - pos) <= 0.0f) r.fail(child(p, "look_at"), "look_at equals position");
+    if (glm::length(glm::cross(glm::normalize(at - pos), up)) < 1e-6f) {
+      r.fail(child(p, "up"), "up is parallel to the viewing direction (or zero)");
+    }
+    scene().camera = Camera(pos, at, up, fov, scene().render.width, scene().render.height);
+  }
+
+  void read_integrator(const json& j, const std::string& p) {
+    if (!j.is_object()) r.fail(p, "expected an object");
+    JsonSource& src = scene().integrator_settings;
+    src.file = r.file();
+    src.pointer = p;
+    src.value = json::object();
+    for (auto it = j.begin(); it != j.end(); ++it) {
+      if (it.key() == "type") {
+        scene().integrator_type = r.string(it.value(), child(p, "type"));
+      } else {
+        src.value[it.key()] = it.value();
+      }
+    }
+  }
+
+  void read_materials(const json& j, const std::string& p) {
+    if (!j.is_object()) r.fail(p, "expected an object mapping names to materials");
+    for (auto it = j.begin(); it != j.end(); ++it) {
+      const std::string mp = child(p, it.key());
+      const json& m = it.value();
+      if (!m.is_object()) r.fail(mp, "expected an object");
+      const std::string type = r.string(r.require(m, mp, "type"), child(mp, "type"));
+      std::unique_ptr<Material> mat;
+      if (type == "diffuse") {
+        r.check_object(m, mp, {"type", "albedo", "emission"});
+        const Color albedo = m.contains("albedo") ? r.color(m["albedo"], child(mp, "albedo")) : Color(0.8f);
+        if (max_component(albedo) > 1.0f) {
+          r.warn(child(mp, "albedo"), "albedo above 1 reflects more than it receives (energy is created)",
+                 out.warnings);
+        }
+        mat = std::make_unique<Lambertian>(albedo);
+        if (m.contains("emission")) mat->emission = r.color(m["emission"], child(mp, "emission"));
+      } else if (type == "mirror") {
+        r.check_object(m, mp, {"type", "reflectance"});
+        const Color refl = m.contains("reflectance") ? r.color(m["reflectance"], child(mp, "reflectance")) : Color(1.0f);
+        mat = std::make_unique<Mirror>(refl);
+      } else if (type == "glass") {
+        r.check_object(m, mp, {"type", "ior", "fresnel"});
+        const float ior = m.contains("ior") ? float(r.number(m["ior"], child(mp, "ior"))) : 1.5f;
+        if (!(ior > 0.0f)) r.fail(child(mp, "ior"), "index of refraction must be positive");
+        FresnelModel model = FresnelModel::Exact;
+        if (m.contains("fresnel")) {
+          const std::string f = r.string(m["fresnel"], child(mp, "fresnel"));
+          if (f == "schlick") model = FresnelModel::Schlick;
+          else if (f != "exact") r.fail(child(mp, "fresnel"), "unknown Fresnel model \"" + f + "\" (known: exact, schlick)");
+        }
+        mat = std::make_unique<Glass>(ior, model);
+      } else {
+        r.fail(child(mp, "type"), "unknown material type \"" + type + "\" (known: diffuse, mirror, glass)");
+      }
+      material_ids[it.key()] = static_cast<uint32_t>(scene().materials.size());
+      scene().materials.push_back(std::move(mat));
+      scene().material_names.push_back(it.key());
+    }
+  }
+
+  uint32_t material_ref(const json& obj, const std::string& p) {
+    const std::string name = r.string(r.require(obj, p, "material"), child(p, "material"));
+    auto it = material_ids.find(name);
+    if (it == material_ids.end()) {
+      std::string known;
+      for (const auto& kv : material_ids) known += (known.empty() ? "" : ", ") + kv.first;
+      r.fail(child(p, "material"), "unknown material \"" + name + "\" (known: " + known + ")");
+    }
+    return it->second;
+  }
+
+  void read_object(const json& j, const std::string& p) {
+    if (!j.is_object()) r.fail(p, "expected an object");
+    const std::string type = r.string(r.require(j, p, "type"), child(p, "type"));
+    std::vector<Primitive> shapes;
+    if (type == "sphere") {
+      r.check_object(j, p, {"type", "name", "material", "flip_normal", "center", "radius"});
+      const Vec3 c = r.vec3(r.require(j, p, "center"), child(p, "center"));
+      const double radius = r.number(r.require(j, p, "radius"), child(p, "radius"));
+      if (!(radius > 0.0)) r.fail(child(p, "radius"), "radius must be positive");
+      shapes.push_back(Primitive::sphere(c, float(radius)));
+      ++out.sphere_count;
+    } else if (type == "triangle") {
+      r.check_object(j, p, {"type", "name", "material", "flip_normal", "vertices"});
+      const json& v = r.require(j, p, "vertices");
+      if (!v.is_array() || v.size() != 3) r.fail(child(p, "vertices"), "expected 3 vertices");
+      add_triangle(shapes, r.vec3(v[0], child(p, "vertices/0")), r.vec3(v[1], child(p, "vertices/1")),
+                   r.vec3(v[2], child(p, "vertices/2")), p);
+    } else if (type == "quad") {
+      r.check_object(j, p, {"type", "name", "material", "flip_normal", "origin", "edge1", "edge2"});
+      const Vec3 o = r.vec3(r.require(j, p, "origin"), child(p, "origin"));
+      const Vec3 e1 = r.vec3(r.require(j, p, "edge1"), child(p, "edge1"));
+      const Vec3 e2 = r.vec3(r.require(j, p, "edge2"), child(p, "edge2"));
+      if (!(glm::length(glm::cross(e1, e2)) > 0.0f)) r.fail(p, "quad has zero area (edges parallel or zero)");
+      add_triangle(shapes, o, o + e1, o + e1 + e2, p);
+      add_triangle(shapes, o, o + e1 + e2, o + e2, p);
+    } else if (type == "mesh") {
+      r.check_object(j, p, {"type", "name", "material", "flip_normal", "vertices", "indices", "file", "scale", "translate"});
+      read_mesh(j, p, shapes);
+    } else {
+      r.fail(child(p, "type"), "unknown object type \"" + type + "\" (known: sphere, triangle, quad, mesh)");
+    }
+    if (j.contains("name")) r.string(j["name"], child(p, "name"));
+    const uint32_t mat = material_ref(j, p);
+    const bool flip = j.contains("flip_normal") && r.boolean(j["flip_normal"], child(p, "flip_normal"));
+    if (shapes.empty()) {
+      r.warn(p, "object has no usable triangles and is left out", out.warnings);
+      return;
+    }
+    int32_t light = -1;
+    for (Primitive& s : shapes) {
+      s.material = mat;
+      s.flip = flip;
+    }
+    const Material& m = *scene().materials[mat];
+    if (m.is_emissive()) {
+      light = static_cast<int32_t>(scene().lights.size());
+      auto area_light = std::make_unique<AreaLight>(shapes, m.emission);
+      if (!(area_light->area() > 0.0f)) r.fail(p, "emissive object has zero area");
+      scene().lights.push_back(std::move(area_light));
+    }
+    for (Primitive& s : shapes) {
+      s.light = light;
+      prims.push_back(s);
+    }
+  }
+
+  void add_triangle(std::vector<Primitive>& shapes, const Vec3& a, const Vec3& b, const Vec3& c, const std::string& p) {
+    const float area2 = glm::length(glm::cross(b - a, c - a));
+    if (!(area2 > 0.0f) || !std::isfinite(area2)) {
+      ++degenerate_;
+      if (degenerate_ <= 3) r.warn(p, "degenerate triangle (zero area) left out", out.warnings);
+      return;
+    }
+    shapes.push_back(Primitive::triangle(a, b, c));
+    ++out.triangle_count;
+  }
+
+  void read_mesh(const json& j, const std::string& p, std::vector<Primitive>& shapes) {
+    std::vector<Vec3> verts;
+    std::vector<glm::ivec3> tris;
+    const bool inline_mesh = j.contains("vertices") || j.contains("indices");
+    if (inline_mesh && j.contains("file")) r.fail(p, "give either \"file\" or \"vertices\" and \"indices\", not both");
+    if (inline_mesh) {
+      const json& v = r.require(j, p, "vertices");
+      const json& ix = r.require(j, p, "indices");
+      if (!v.is_array()) r.fail(child(p, "vertices"), "expected an array of [x, y, z]");
+      if (!ix.is_array()) r.fail(child(p, "indices"), "expected an array of [i, j, k]");
+      for (size_t i = 0; i < v.size(); ++i) verts.push_back(r.vec3(v[i], child(child(p, "vertices"), i)));
+      for (size_t i = 0; i < ix.size(); ++i) {
+        const std::string tp = child(child(p, "indices"), i);
+        if (!ix[i].is_array() || ix[i].size() != 3) r.fail(tp, "expected 3 vertex indices");
+        glm::ivec3 t;
+        for (int k = 0; k < 3; ++k) t[k] = int(r.integer(ix[i][k], child(tp, size_t(k)), 0, int64_t(verts.size()) - 1));
+        tris.push_back(t);
+      }
+    } else {
+      const std::string file = r.string(r.require(j, p, "file"), child(p, "file"));
+      load_obj(file, child(p, "file"), verts, tris);
+    }
+    Vec3 scale(1.0f), translate(0.0f);
+    if (j.contains("scale")) {
+      scale = j["scale"].is_number() ? Vec3(float(r.number(j["scale"], child(p, "scale"))))
+                                     : r.vec3(j["scale"], child(p, "scale"));
+    }
+    if (j.contains("translate")) translate = r.vec3(j["translate"], child(p, "translate"));
+    for (Vec3& v : verts) v = v * scale + translate;
+    for (const glm::ivec3& t : tris) add_triangle(shapes, verts[t.x], verts[t.y], verts[t.z], p);
+  }
+
+  void load_obj(const std::string& file, const std::string& p, std::vector<Vec3>& verts, std::vector<glm::ivec3>& tris) {
+    const fs::path path = fs::path(file).is_absolute() ? fs::path(file) : fs::path(base_dir) / file;
+    std::error_code ec;
+    if (!fs::exists(path, ec)) r.fail(p, "mesh file not found: tried " + path.string());
+    if (!fs::is_regular_file(path, ec)) r.fail(p, "mesh path is not a regular file: " + path.string());
+    std::ifstream probe(path);
+    if (!probe) r.fail(p, "mesh file cannot be read: " + path.string());
+    tinyobj::ObjReaderConfig config;
+    config.triangulate = true;
+    config.vertex_color = false;
+    config.mtl_search_path = path.parent_path().string();
+    tinyobj::ObjReader reader;
+    if (!reader.ParseFromFile(path.string(), config)) {
+      r.fail(p, "cannot parse OBJ file " + path.string() + ": " + reader.Error());
+    }
+    const auto& attrib = reader.GetAttrib();
+    for (size_t i = 0; i + 2 < attrib.vertices.size(); i += 3) {
+      verts.emplace_back(attrib.vertices[i], attrib.vertices[i + 1], attrib.vertices[i + 2]);
+    }
+    for (const auto& shape : reader.GetShapes()) {
+      const auto& idx = shape.mesh.indices;
+      for (size_t i = 0; i + 2 < idx.size(); i += 3) {
+        glm::ivec3 t(idx[i].vertex_index, idx[i + 1].vertex_index, idx[i + 2].vertex_index);
+        for (int k = 0; k < 3; ++k) {
+          if (t[k] < 0 || size_t(t[k]) >= verts.size()) r.fail(p, "OBJ file " + path.string() + " has a face with a vertex index out of range");
+        }
+        tris.push_back(t);
+      }
+    }
+    if (tris.empty()) r.fail(p, "OBJ file " + path.string() + " has no faces");
+  }
+
+  void read_light(const json& j, const std::string& p) {
+    if (!j.is_object()) r.fail(p, "expected an object");
+    const std::string type = r.string(r.require(j, p, "type"), child(p, "type"));
+    if (type != "point") r.fail(child(p, "type"), "unknown light type \"" + type + "\" (known: point; area lights are objects with an emissive material)");
+    r.check_object(j, p, {"type", "name", "position", "intensity"});
+    const Vec3 pos = r.vec3(r.require(j, p, "position"), child(p, "position"));
+    const Color intensity = r.color(r.require(j, p, "intensity"), child(p, "intensity"));
+    if (is_black(intensity)) r.fail(child(p, "intensity"), "a light with zero intensity emits nothing");
+    scene().lights.push_back(std::make_unique<PointLight>(pos, intensity));
+  }
+
+  size_t degenerate_ = 0;
+};
+
+}  // namespace
+
+LoadedScene parse_scene(const std::string& text, const std::string& file, const std::string& base_dir) {
+  Loader loader{JsonReader(file), base_dir, {}, {}, {}};
+  loader.out.scene = std::make_unique<Scene>();
+  loader.out.scene->source_file = file;
+  const json doc = parse_json_text(text, file);
+  loader.load(doc);
+  if (loader.degenerate_ > 3) {
+    loader.out.warnings.push_back(file + ": " + std::to_string(loader.degenerate_) +
+                                  " degenerate triangles left out in all");
+  }
+  return std::move(loader.out);
+}
+
+LoadedScene load_scene(const std::string& path) {
+  std::error_code ec;
+  if (!fs::exists(path, ec)) throw InputError(path + ": scene file not found");
+  if (fs::is_directory(path, ec)) throw InputError(path + ": is a directory, not a scene file");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path + ": cannot open scene file for reading");
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  if (in.bad()) throw InputError(path + ": error while reading the scene file");
+  const std::string base = fs::path(path).parent_path().string();
+  return parse_scene(ss.str(), path, base.empty() ? "." : base);
+}
+
+}  // namespace caustica

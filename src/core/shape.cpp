@@ -1,0 +1,106 @@
+// Triangle and sphere geometry and intersection.
+#include "core/shape.h"
+#include "core/sampling.h"
+
+namespace caustica {
+
+Primitive Primitive::triangle(const Vec3& a, const Vec3& b, const Vec3& c) {
+  Primitive p;
+  p.kind = ShapeKind::Triangle;
+  p.p0 = a;
+  p.p1 = b;
+  p.p2 = c;
+  return p;
+}
+
+Primitive Primitive::sphere(const Vec3& centre, float radius) {
+  Primitive p;
+  p.kind = ShapeKind::Sphere;
+  p.p0 = centre;
+  p.p1 = Vec3(radius, 0, 0);
+  p.p2 = Vec3(0);
+  return p;
+}
+
+Bounds Primitive::bounds() const {
+  Bounds b;
+  if (kind == ShapeKind::Triangle) {
+    b.extend(p0);
+    b.extend(p1);
+    b.extend(p2);
+  } else {
+    b.extend(p0 - Vec3(radius()));
+    b.extend(p0 + Vec3(radius()));
+  }
+  return b;
+}
+
+Vec3 Primitive::centroid() const {
+  return kind == ShapeKind::Triangle ? (p0 + p1 + p2) / 3.0f : p0;
+}
+
+float Primitive::area() const {
+  if (kind == ShapeKind::Triangle) return 0.5f * glm::length(glm::cross(p1 - p0, p2 - p0));
+  return 4.0f * kPi * radius() * radius();
+}
+
+Vec3 Primitive::normal_at(const Vec3& p) const {
+  const Vec3 n = kind == ShapeKind::Triangle ? glm::normalize(glm::cross(p1 - p0, p2 - p0))
+                                             : glm::normalize(p - p0);
+  return flip ? -n : n;
+}
+
+Vec3 Primitive::sample_point(const Vec2& u, Vec3* normal) const {
+  Vec3 p;
+  if (kind == ShapeKind::Triangle) {
+    const Vec2 b = sample_uniform_triangle(u);
+    p = b.x * p0 + b.y * p1 + (1.0f - b.x - b.y) * p2;
+  } else {
+    p = p0 + radius() * sample_uniform_sphere(u);
+  }
+  if (normal) *normal = normal_at(p);
+  return p;
+}
+
+bool intersect_triangle(const Ray& ray, const Vec3& p0, const Vec3& p1, const Vec3& p2,
+                        float tmax, float& t, float& u, float& v) {
+  const Vec3 e1 = p1 - p0, e2 = p2 - p0;
+  const Vec3 pvec = glm::cross(ray.dir, e2);
+  const float det = glm::dot(e1, pvec);
+  if (det == 0.0f || !std::isfinite(det)) return false;
+  const float inv_det = 1.0f / det;
+  const Vec3 tvec = ray.origin - p0;
+  u = glm::dot(tvec, pvec) * inv_det;
+  if (u < 0.0f || u > 1.0f) return false;
+  const Vec3 qvec = glm::cross(tvec, e1);
+  v = glm::dot(ray.dir, qvec) * inv_det;
+  if (v < 0.0f || u + v > 1.0f) return false;
+  t = glm::dot(e2, qvec) * inv_det;
+  return t > 0.0f && t < tmax;
+}
+
+bool intersect_sphere(const Ray& ray, const Vec3& centre, float radius, float tmax, float& t) {
+  const glm::dvec3 d(ray.dir);
+  const glm::dvec3 f = glm::dvec3(ray.origin) - glm::dvec3(centre);
+  const double r = radius;
+  const double b = -glm::dot(f, d);  // ray.dir is unit length, so a = 1
+  const glm::dvec3 l = f + b * d;    // closest approach, computed without cancellation
+  const double disc = r * r - glm::dot(l, l);
+  if (disc < 0.0) return false;
+  const double c = glm::dot(f, f) - r * r;
+  const double q = b + std::copysign(std::sqrt(disc), b);
+  double t0 = c / q, t1 = q;
+  if (q == 0.0) t0 = t1 = 0.0;
+  if (t0 > t1) std::swap(t0, t1);
+  if (t0 > 0.0 && t0 < tmax) {
+    t = static_cast<float>(t0);
+    return t > 0.0f;
+  }
+  if (t1 > 0.0 && t1 < tmax) {
+    t = static_cast<float>(t1);
+    return t > 0.0f;
+  }
+  return false;
+}
+
+}  // namespace caustica

@@ -1,0 +1,58 @@
+// Geometric primitives (triangles, spheres), their bounds and ray intersection.
+#pragma once
+#include <cstdint>
+#include "core/math.h"
+
+namespace caustica {
+
+struct Bounds {
+  Vec3 lo{kInfinity}, hi{-kInfinity};
+  void extend(const Vec3& p) { lo = glm::min(lo, p); hi = glm::max(hi, p); }
+  void extend(const Bounds& b) { lo = glm::min(lo, b.lo); hi = glm::max(hi, b.hi); }
+  Vec3 centre() const { return 0.5f * (lo + hi); }
+  Vec3 extent() const { return hi - lo; }
+  bool empty() const { return lo.x > hi.x; }
+  float surface_area() const {
+    if (empty()) return 0.0f;
+    const Vec3 d = extent();
+    return 2.0f * (d.x * d.y + d.y * d.z + d.z * d.x);
+  }
+};
+
+enum class ShapeKind : uint8_t { Triangle, Sphere };
+
+// A triangle (p0, p1, p2) or a sphere (centre p0, radius p1.x). `flip` reverses the normal.
+struct Primitive {
+  Vec3 p0, p1, p2;
+  uint32_t material = 0;
+  int32_t light = -1;  // index of the area light this primitive belongs to, or -1
+  ShapeKind kind = ShapeKind::Triangle;
+  bool flip = false;
+
+  static Primitive triangle(const Vec3& a, const Vec3& b, const Vec3& c);
+  static Primitive sphere(const Vec3& centre, float radius);
+  float radius() const { return p1.x; }
+  Bounds bounds() const;
+  Vec3 centroid() const;
+  float area() const;
+  // Outward (or winding) normal at a point on the surface, after `flip`.
+  Vec3 normal_at(const Vec3& p) const;
+  // Point at sample u, uniformly by area, with its normal.
+  Vec3 sample_point(const Vec2& u, Vec3* normal) const;
+};
+
+// Moller-Trumbore (1997). Returns true and t, barycentrics (u, v) for a hit with 0 < t < tmax.
+bool intersect_triangle(const Ray& ray, const Vec3& p0, const Vec3& p1, const Vec3& p2,
+                        float tmax, float& t, float& u, float& v);
+
+// Analytic sphere in double precision with the numerically stable root (Haines et al.,
+// Ray Tracing Gems ch. 7), so rays from the surface and huge radii behave.
+bool intersect_sphere(const Ray& ray, const Vec3& centre, float radius, float tmax, float& t);
+
+inline bool intersect_primitive(const Ray& ray, const Primitive& p, float tmax, float& t) {
+  float u, v;
+  return p.kind == ShapeKind::Triangle ? intersect_triangle(ray, p.p0, p.p1, p.p2, tmax, t, u, v)
+                                       : intersect_sphere(ray, p.p0, p.radius(), tmax, t);
+}
+
+}  // namespace caustica

@@ -1,0 +1,21 @@
+// Next-event estimation shared by the whitted, path and photon integrators.
+#include "trace/direct.h"
+
+namespace caustica {
+
+Color estimate_direct(const Scene& scene, const SurfaceHit& hit, const Vec3& wo, Sampler& sampler) {
+  float pmf = 0.0f;
+  const Light* light = scene.sample_light(sampler.next1d(), pmf);
+  const Vec2 u = sampler.next2d();
+  if (!light || pmf <= 0.0f) return Color(0.0f);
+  LightSample ls;
+  if (!light->sample_li(hit.p, u, ls)) return Color(0.0f);
+  const Vec3 wo_l = hit.frame.to_local(wo), wi_l = hit.frame.to_local(ls.wi);
+  const Color f = hit.material->eval(wo_l, wi_l);
+  if (is_black(f)) return Color(0.0f);
+  ++sampler.rays;
+  if (scene.occluded(spawn_ray_to(hit.p, hit.n, ls.p, ls.n))) return Color(0.0f);
+  return f * ls.weight * (std::abs(wi_l.z) / pmf);
+}
+
+}  // namespace caustica

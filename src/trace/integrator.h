@@ -1,0 +1,35 @@
+// The integrator interface and the factory table that creates integrators by name.
+#pragma once
+#include <memory>
+#include <string>
+#include <vector>
+#include "core/json_reader.h"
+#include "core/sampler.h"
+#include "core/scene.h"
+
+namespace caustica {
+
+struct PreprocessContext {
+  uint64_t seed = 0;
+  bool quiet = false;
+};
+
+class Integrator {
+ public:
+  virtual ~Integrator() = default;
+  // Work done once before the eye pass (the photon pass goes here).
+  virtual void preprocess(const Scene&, const PreprocessContext&) {}
+  // Radiance arriving at the camera along `ray`.
+  virtual Color Li(const Ray& ray, const Scene& scene, Sampler& sampler) const = 0;
+  virtual std::string name() const = 0;
+  // Settings and preprocess statistics, one "key: value" per line, for the render report.
+  virtual std::string describe() const = 0;
+};
+
+// Creates the integrator `type`, reading its settings (unknown keys are errors).
+// Throws InputError listing the valid names when `type` is unknown.
+std::unique_ptr<Integrator> create_integrator(const std::string& type, const JsonSource& settings,
+                                              const RenderSettings& render);
+std::vector<std::string> integrator_names();
+
+}  // namespace caustica

@@ -1,0 +1,85 @@
+// Render loop. Pixel (x, y), sample s seeds its own random stream from hash(pixel, s, seed),
+// so neither tile order nor thread count changes the result; each pass is summed in order.
+#include "trace/render.h"
+#include <chrono>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include "trace/progress.h"
+
+namespace caustica {
+
+Image render_image(const Scene& scene, const Integrator& integrator, const RenderOptions& options,
+                   RenderStats& stats) {
+  const int w = scene.camera.width(), h = scene.camera.height();
+  const int ts = options.tile_size;
+  const int tiles_x = (w + ts - 1) / ts, tiles_y = (h + ts - 1) / ts;
+  const int tile_count = tiles_x * tiles_y;
+  const bool timed = options.time_limit > 0;
+  std::vector<glm::dvec3> sum(size_t(w) * h, glm::dvec3(0.0));
+  Image pass_image(w, h);
+  std::atomic<uint64_t> rays{0}, bad{0};
+  std::atomic<int> tiles_done{0};
+  const auto start = std::chrono::steady_clock::now();
+  auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
+  Progress progress("render", timed ? options.time_limit : double(options.spp) * tile_count, options.quiet);
+  stats = RenderStats{};
+  auto cancelled = [&] { return options.cancel && options.cancel->load(std::memory_order_relaxed); };
+
+  for (int pass = 0;; ++pass) {
+    if (!timed && pass >= options.spp) break;
+    if (timed && pass > 0) {
+      const double t = elapsed();
+      if (t + t / pass > options.time_limit) break;  // the next pass would overrun the budget
+    }
+    tbb::parallel_for(tbb::blocked_range<int>(0, tile_count), [&](const tbb::blocked_range<int>& range) {
+      for (int tile = range.begin(); tile != range.end(); ++tile) {
+        if (cancelled()) return;
+        const int x0 = (tile % tiles_x) * ts, y0 = (tile / tiles_x) * ts;
+        uint64_t tile_rays = 0, tile_bad = 0;
+        for (int y = y0; y < std::min(y0 + ts, h); ++y) {
+          for (int x = x0; x < std::min(x0 + ts, w); ++x) {
+            const uint64_t pixel = uint64_t(y) * w + x;
+            Sampler sampler(hash_seed(pixel, uint64_t(pass), options.seed));
+            const Vec2 jitter = sampler.next2d();
+            const Ray ray = scene.camera.generate_ray(x + jitter.x, y + jitter.y);
+            Color L = integrator.Li(ray, scene, sampler);
+            if (!is_finite(L) || L.r < 0 || L.g < 0 || L.b < 0) {
+              L = Color(0.0f);
+              ++tile_bad;
+            }
+            pass_image.at(x, y) = L;
+            tile_rays += sampler.rays;
+          }
+        }
+        rays += tile_rays;
+        bad += tile_bad;
+        const int done = ++tiles_done;
+        if (!timed) progress.set(done);
+      }
+    });
+    if (cancelled()) {
+      stats.interrupted = true;
+      break;
+    }
+    for (size_t i = 0; i < sum.size(); ++i) sum[i] += glm::dvec3(pass_image.pixels[i]);
+    stats.passes = pass + 1;
+    if (timed) progress.set(std::min(elapsed(), options.time_limit));
+    if (options.on_pass) {
+      Image mean(w, h);
+      for (size_t i = 0; i < sum.size(); ++i) mean.pixels[i] = Color(sum[i] / double(stats.passes));
+      options.on_pass(stats.passes, elapsed(), mean);
+    }
+  }
+  progress.finish();
+  stats.seconds = elapsed();
+  stats.rays = rays;
+  stats.bad_samples = bad;
+  stats.samples = uint64_t(stats.passes) * w * h;
+  Image image(w, h);
+  if (stats.passes > 0) {
+    for (size_t i = 0; i < sum.size(); ++i) image.pixels[i] = Color(sum[i] / double(stats.passes));
+  }
+  return image;
+}
+
+}  // namespace caustica

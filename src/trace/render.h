@@ -1,0 +1,34 @@
+// The render loop: passes of one sample per pixel over 16 px tiles with tbb::parallel_for.
+#pragma once
+#include <atomic>
+#include <functional>
+#include "core/image.h"
+#include "trace/integrator.h"
+
+namespace caustica {
+
+struct RenderOptions {
+  int spp = 16;
+  double time_limit = 0;  // seconds; > 0 renders whole passes until the budget is spent
+  uint64_t seed = 0;
+  bool quiet = false;
+  int tile_size = 16;
+  const std::atomic<bool>* cancel = nullptr;  // set (e.g. by SIGINT) to stop after this tile
+  // Called after each completed pass with the running mean; may be null.
+  std::function<void(int passes, double seconds, const Image& mean)> on_pass;
+};
+
+struct RenderStats {
+  double seconds = 0;
+  uint64_t samples = 0;  // camera samples
+  uint64_t rays = 0;     // all rays traced, shadow rays included
+  int passes = 0;
+  uint64_t bad_samples = 0;  // NaN, infinite or negative radiance, dropped
+  bool interrupted = false;
+};
+
+// Deterministic: the image for a scene, integrator and seed is the same for any thread count.
+Image render_image(const Scene& scene, const Integrator& integrator, const RenderOptions& options,
+                   RenderStats& stats);
+
+}  // namespace caustica
