@@ -1,5 +1,6 @@
 // JSON parsing with file:line:column syntax errors and pointer-named semantic errors.
 #include "core/json_reader.h"
+#include <algorithm>
 #include <sstream>
 
 namespace caustica {
@@ -33,6 +34,22 @@ nlohmann::json parse_json_text(const std::string& text, const std::string& file)
       msg << "\n  " << source_line << "\n  " << std::string(std::min<size_t>(column - 1, 200), ' ') << "^";
     }
     throw InputError(msg.str());
+  } catch (const nlohmann::json::exception& e) {
+    // Number overflow ("1e999") carries no position: find the quoted token in the text.
+    std::string what = e.what();
+    const size_t q1 = what.find('\''), q2 = what.rfind('\'');
+    std::string where = file;
+    if (q1 != std::string::npos && q2 > q1) {
+      const size_t at = text.find(what.substr(q1 + 1, q2 - q1 - 1));
+      if (at != std::string::npos) {
+        const size_t line = 1 + std::count(text.begin(), text.begin() + at, '\n');
+        const size_t line_start = text.rfind('\n', at == 0 ? 0 : at - 1);
+        const size_t column = line_start == std::string::npos || at == 0 ? at + 1 : at - line_start;
+        where += ":" + std::to_string(line) + ":" + std::to_string(column);
+      }
+    }
+    const size_t bracket = what.find("] ");
+    throw InputError(where + ": " + (bracket != std::string::npos ? what.substr(bracket + 2) : what));
   }
 }
 

@@ -1,0 +1,124 @@
+// The caustica executable end to end: renders, overrides, and bad input that must fail cleanly.
+#include <catch2/catch.hpp>
+#include <filesystem>
+#include "core/image.h"
+#include "support/run.h"
+
+using namespace caustica;
+using test::run_caustica;
+namespace fs = std::filesystem;
+
+namespace {
+const std::string kTiny = std::string(CAUSTICA_SOURCE_DIR) + "/tests/data/tiny.json";
+
+const char* kGoodScene = R"({
+  "camera": {"position": [0, 1, 3], "look_at": [0, 1, 0], "fov": 50},
+  "render": {"width": 16, "height": 16, "spp": 2},
+  "materials": {"white": {"type": "diffuse", "albedo": [0.7, 0.7, 0.7]},
+                "lamp": {"type": "diffuse", "albedo": [0, 0, 0], "emission": [5, 5, 5]}},
+  "objects": [
+    {"type": "quad", "origin": [-2, 0, -2], "edge1": [0, 0, 4], "edge2": [4, 0, 0], "material": "white"},
+    {"type": "quad", "origin": [-0.5, 2, -0.5], "edge1": [1, 0, 0], "edge2": [0, 0, 1], "material": "lamp"}
+  ]
+})";
+
+bool no_images_left(const test::TempDir& dir) {
+  for (const auto& e : fs::directory_iterator(dir.path())) {
+    const std::string name = e.path().filename().string();
+    if (name != "stdout.txt" && name != "stderr.txt" && e.path().extension() != ".json") return false;
+  }
+  return true;
+}
+}  // namespace
+
+TEST_CASE("cli: renders a tiny scene to PNG and EXR", "[app]") {
+  test::TempDir dir;
+  auto r = run_caustica("render '" + kTiny + "' -o out.png --quiet", dir);
+  REQUIRE(r.exit_code == 0);
+  CHECK(r.err.empty());
+  const Image png = read_image(dir.file("out.png"));
+  CHECK(png.width == 32);
+  CHECK(png.mean().x > 0.02f);
+  r = run_caustica("render '" + kTiny + "' -o out.exr --spp 2 --width 20 --height 10 --threads 1 --seed 5", dir);
+  REQUIRE(r.exit_code == 0);
+  const Image exr = read_image(dir.file("out.exr"));
+  CHECK(exr.width == 20);
+  CHECK(exr.height == 10);
+  CHECK(r.out.find("passes (spp): 2") != std::string::npos);
+  CHECK(r.out.find("seed: 5") != std::string::npos);
+  CHECK(r.out.find("rays per second") != std::string::npos);
+}
+
+TEST_CASE("cli: --version and --help", "[app]") {
+  test::TempDir dir;
+  auto r = run_caustica("--version", dir);
+  CHECK(r.exit_code == 0);
+  CHECK(r.out.find("caustica 0.") != std::string::npos);
+  r = run_caustica("render --help", dir);
+  CHECK(r.exit_code == 0);
+  CHECK(r.out.find("--spp") != std::string::npos);
+}
+
+TEST_CASE("cli: bad input exits non-zero with a located message and writes no image", "[app]") {
+  test::TempDir dir;
+  dir.write("good.json", kGoodScene);
+  struct Case {
+    std::string name, scene_text, args, expect;
+  };
+  std::string good(kGoodScene);
+  auto replaced = [&](const std::string& from, const std::string& to) {
+    std::string s = good;
+    s.replace(s.find(from), from.size(), to);
+    return s;
+  };
+  const std::vector<Case> cases = {
+      {"malformed", "{\n  \"camera\": {\n    \"position\": [0, 1 3]\n", "", "bad.json:3:"},
+      {"empty file", "", "", "bad.json:1:1:"},
+      {"unknown material", replaced("\"material\": \"white\"", "\"material\": \"whit\""), "",
+       "bad.json: /objects/0/material: unknown material \"whit\" (known: lamp, white)"},
+      {"unknown key", replaced("\"fov\": 50", "\"fow\": 50"), "", "bad.json: /camera/fow: unknown key \"fow\""},
+      {"missing mesh", replaced("{\"type\": \"quad\", \"origin\": [-2, 0, -2], \"edge1\": [0, 0, 4], \"edge2\": [4, 0, 0],",
+                                "{\"type\": \"mesh\", \"file\": \"nowhere/bunny.obj\","),
+       "", "mesh file not found: tried"},
+      {"mesh path is a folder", replaced("{\"type\": \"quad\", \"origin\": [-2, 0, -2], \"edge1\": [0, 0, 4], \"edge2\": [4, 0, 0],",
+                                         "{\"type\": \"mesh\", \"file\": \".\","),
+       "", "not a regular file"},
+      {"negative spp in scene", replaced("\"spp\": 2", "\"spp\": -1"), "", "bad.json: /render/spp: value -1 is out of range"},
+      {"zero resolution", replaced("\"width\": 16", "\"width\": 0"), "", "/render/width"},
+      {"huge resolution", replaced("\"width\": 16", "\"width\": 100000"), "", "/render/width"},
+      {"zero radius", replaced("{\"type\": \"quad\", \"origin\": [-2, 0, -2], \"edge1\": [0, 0, 4], \"edge2\": [4, 0, 0],",
+                               "{\"type\": \"sphere\", \"center\": [0, 0, 0], \"radius\": 0,"),
+       "", "/objects/0/radius: radius must be positive"},
+      {"wrong type", replaced("\"fov\": 50", "\"fov\": \"wide\""), "", "/camera/fov: expected a number"},
+      {"infinite number", replaced("\"fov\": 50", "\"fov\": 1e999"), "", "bad.json:2:"},
+      {"binary garbage", std::string("\x89PNG\r\n\x1a\n\x00\x01\xff", 11), "", "bad.json:1:1:"},
+      {"negative --spp", good, "--spp -1", "--spp"},
+      {"--threads 0", good, "--threads 0", "--threads"},
+      {"unknown integrator", good, "--integrator phton", "unknown integrator \"phton\" (known: "},
+      {"output in a missing folder", good, "-o missing/dir/out.png", "does not exist"},
+      {"unknown output type", good, "-o out.jpeg", "unknown image type"},
+  };
+  for (const Case& c : cases) {
+    SECTION(c.name) {
+      dir.write("bad.json", c.scene_text);
+      const std::string args = c.args.find("-o ") == std::string::npos ? c.args + " -o out.png" : c.args;
+      const auto r = run_caustica("render bad.json " + args, dir);
+      INFO("stderr: " << r.err);
+      CHECK(r.exit_code != 0);
+      CHECK(r.exit_code < 128);  // not killed by a signal
+      CHECK(r.err.find(c.expect) != std::string::npos);
+      fs::remove(dir.file("bad.json"));
+      CHECK(no_images_left(dir));
+    }
+  }
+}
+
+TEST_CASE("cli: a missing scene file and a folder as scene", "[app]") {
+  test::TempDir dir;
+  auto r = run_caustica("render nothing.json -o out.png", dir);
+  CHECK(r.exit_code == 1);
+  CHECK(r.err.find("nothing.json: scene file not found") != std::string::npos);
+  r = run_caustica("render . -o out.png", dir);
+  CHECK(r.exit_code == 1);
+  CHECK(r.err.find("is a directory") != std::string::npos);
+}

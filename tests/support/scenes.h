@@ -1,0 +1,23 @@
+// Small analytic scenes shared by the integrator tests.
+#pragma once
+#include <string>
+
+namespace caustica::test {
+
+// Camera inside a closed sphere (normals flipped inward) with albedo `albedo` and emission
+// `emission`: every pixel's radiance is emission / (1 - albedo).
+inline std::string furnace_scene(double albedo, double emission, const std::string& integrator_json,
+                                 int spp = 16, int size = 32) {
+  return R"({
+    "camera": {"position": [0, 0, 0], "look_at": [0, 0, 1], "up": [0, 1, 0], "fov": 90},
+    "render": {"width": )" + std::to_string(size) + R"(, "height": )" + std::to_string(size) +
+         R"(, "spp": )" + std::to_string(spp) + R"(, "seed": 7, "max_depth": 1000},
+    "integrator": )" + integrator_json + R"(,
+    "materials": {"shell": {"type": "diffuse", "albedo": [)" + std::to_string(albedo) + "," +
+         std::to_string(albedo) + "," + std::to_string(albedo) + R"(], "emission": [)" + std::to_string(emission) +
+         "," + std::to_string(emission) + "," + std::to_string(emission) + R"(]}},
+    "objects": [{"type": "sphere", "center": [0.3, -0.2, 0.1], "radius": 2, "material": "shell", "flip_normal": true}]
+  })";
+}
+
+}  // namespace caustica::test
