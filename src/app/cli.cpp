@@ -5,6 +5,8 @@
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
+#include <cmath>
+#include <iterator>
 #include <optional>
 #include <tbb/global_control.h>
 #include <tbb/info.h>
@@ -39,10 +41,47 @@ int run_cli(int argc, char** argv) {
   render->add_option("--exposure", args.exposure, "Exposure in stops for PNG output")->check(CLI::Range(-30.0, 30.0));
   render->add_flag("-q,--quiet", args.quiet, "No progress bar and no statistics");
 
+  // Photon-mapping settings (integrators photon and photon-direct); each maps to a settings key.
+  struct PhotonFlag {
+    const char* flag;
+    const char* key;
+    const char* help;
+    bool real;
+  };
+  static const PhotonFlag photon_flags[] = {
+      {"--photons", "photons", "Photons stored in the global map", false},
+      {"--caustic-photons", "caustic_photons", "Photons stored in the caustic map", false},
+      {"--global-k", "global_k", "Nearest photons per global-map estimate", false},
+      {"--caustic-k", "caustic_k", "Nearest photons per caustic-map estimate", false},
+      {"--global-radius", "global_radius", "Maximum global-map search radius (scene units)", true},
+      {"--caustic-radius", "caustic_radius", "Maximum caustic-map search radius (scene units)", true},
+      {"--gather-rays", "gather_rays", "Final-gather rays per first diffuse hit", false},
+      {"--direct-samples", "direct_samples", "Shadow-ray samples per first diffuse hit", false},
+      {"--irradiance-stride", "irradiance_stride", "Precompute irradiance at every n-th global photon (0: off)", false},
+  };
+  std::vector<std::pair<const PhotonFlag*, CLI::Option*>> photon_options;
+  static std::vector<double> photon_values(std::size(photon_flags));
+  for (size_t i = 0; i < std::size(photon_flags); ++i) {
+    const PhotonFlag& f = photon_flags[i];
+    CLI::Option* o = render->add_option(f.flag, photon_values[i], f.help)->group("Photon mapping");
+    o->check(CLI::NonNegativeNumber);
+    photon_options.emplace_back(&f, o);
+  }
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return app.exit(e) == 0 ? 0 : 1;
+  }
+  for (size_t i = 0; i < photon_options.size(); ++i) {
+    const PhotonFlag& f = *photon_options[i].first;
+    if (photon_options[i].second->count() == 0) continue;
+    const double v = photon_values[i];
+    if (!f.real && v != std::floor(v)) {
+      std::cerr << "error: " << f.flag << " " << v << ": expected a whole number\n";
+      return 1;
+    }
+    args.integrator_overrides.emplace_back(f.key, f.real ? nlohmann::json(v) : nlohmann::json(int64_t(v)));
   }
   try {
     if (render->parsed()) return run_render(args);

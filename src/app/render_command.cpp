@@ -1,5 +1,6 @@
 // `caustica render`.
 #include "app/render_command.h"
+#include <algorithm>
 #include <atomic>
 #include <csignal>
 #include <filesystem>
@@ -49,6 +50,15 @@ int run_render(const RenderArgs& args) {
     }
     type = args.integrator;
     settings.value = nlohmann::json::object();
+  }
+  for (const auto& kv : args.integrator_overrides) {
+    std::string flag = "--" + kv.first;
+    std::replace(flag.begin(), flag.end(), '_', '-');
+    const bool gather_only = kv.first == "gather_rays" || kv.first == "direct_samples" || kv.first == "irradiance_stride";
+    if ((type != "photon" && type != "photon-direct") || (type == "photon-direct" && gather_only)) {
+      throw InputError(flag + " does not apply to integrator \"" + type + "\"");
+    }
+    settings.value[kv.first] = kv.second;
   }
   std::unique_ptr<Integrator> integrator = create_integrator(type, settings, rs);
 

@@ -2,6 +2,9 @@
 #pragma once
 #include <optional>
 #include <string>
+#include <utility>
+#include <vector>
+#include <nlohmann/json.hpp>
 
 namespace caustica {
 
@@ -10,6 +13,8 @@ struct RenderArgs {
   std::optional<int> spp, threads, width, height, max_depth;
   std::optional<uint64_t> seed;
   std::optional<double> time;
+  // Integrator settings from flags such as --photons, by settings key (applied over the scene's).
+  std::vector<std::pair<std::string, nlohmann::json>> integrator_overrides;
   float exposure = 0.0f;
   bool quiet = false;
 };

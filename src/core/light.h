@@ -29,6 +29,10 @@ class Light {
   virtual ~Light() = default;
   virtual bool sample_li(const Vec3& x, const Vec2& u, LightSample& s) const = 0;
   virtual EmittedPhoton sample_emission(const Vec2& u_pos, const Vec2& u_dir) const = 0;
+  // A point on the light (normal zero and pdf 1 for a point light; else area density).
+  virtual Vec3 sample_origin(const Vec2& u, Vec3& normal, float& pdf) const = 0;
+  // Radiant intensity per unit area (Le cos) or per light (I) leaving along dir.
+  virtual Color emitted_towards(const Vec3& normal, const Vec3& dir) const = 0;
   virtual Color power() const = 0;
   virtual bool is_delta() const = 0;
   virtual Bounds bounds() const = 0;
@@ -41,6 +45,13 @@ class AreaLight final : public Light {
   AreaLight(std::vector<Primitive> shapes, const Color& radiance);
   bool sample_li(const Vec3& x, const Vec2& u, LightSample& s) const override;
   EmittedPhoton sample_emission(const Vec2& u_pos, const Vec2& u_dir) const override;
+  Vec3 sample_origin(const Vec2& u, Vec3& normal, float& pdf) const override {
+    pdf = 1.0f / area_;
+    return sample_point(u, normal);
+  }
+  Color emitted_towards(const Vec3& normal, const Vec3& dir) const override {
+    return radiance_ * std::max(0.0f, glm::dot(normal, dir));
+  }
   Color power() const override { return kPi * area_ * radiance_; }
   bool is_delta() const override { return false; }
   Bounds bounds() const override;
@@ -60,6 +71,12 @@ class PointLight final : public Light {
   PointLight(const Vec3& position, const Color& intensity) : position_(position), intensity_(intensity) {}
   bool sample_li(const Vec3& x, const Vec2& u, LightSample& s) const override;
   EmittedPhoton sample_emission(const Vec2& u_pos, const Vec2& u_dir) const override;
+  Vec3 sample_origin(const Vec2&, Vec3& normal, float& pdf) const override {
+    normal = Vec3(0.0f);
+    pdf = 1.0f;
+    return position_;
+  }
+  Color emitted_towards(const Vec3&, const Vec3&) const override { return intensity_; }
   Color power() const override { return 4.0f * kPi * intensity_; }
   bool is_delta() const override { return true; }
   Bounds bounds() const override;

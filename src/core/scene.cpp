@@ -31,6 +31,12 @@ bool Scene::intersect(const Ray& ray, SurfaceHit& hit) const {
   return true;
 }
 
+float Scene::surface_area() const {
+  float a = 0;
+  for (const ObjectInfo& o : objects) a += o.area;
+  return a;
+}
+
 const Light* Scene::sample_light(float u, float& pmf) const {
   if (lights.empty()) return nullptr;
   return lights[light_distribution_.sample(u, &pmf)].get();

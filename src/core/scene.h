@@ -36,6 +36,14 @@ struct SurfaceHit {
   Frame frame;  // around n
 };
 
+// One scene object's bounding sphere and material (photon emission aims at specular ones).
+struct ObjectInfo {
+  Vec3 centre;
+  float radius = 0;
+  uint32_t material = 0;
+  float area = 0;
+};
+
 class Scene {
  public:
   Camera camera;
@@ -47,6 +55,7 @@ class Scene {
   std::vector<std::unique_ptr<Material>> materials;
   std::vector<std::string> material_names;
   std::vector<std::unique_ptr<Light>> lights;
+  std::vector<ObjectInfo> objects;
 
   // Builds the BVH over the primitives and the light-selection distribution (by power).
   void build(std::vector<Primitive> prims);
@@ -57,6 +66,7 @@ class Scene {
   float light_pmf(size_t i) const { return light_distribution_.pmf(i); }
   const Bvh& bvh() const { return bvh_; }
   Bounds bounds() const { return bounds_; }
+  float surface_area() const;  // of all geometry
 
  private:
   Bvh bvh_;

@@ -184,10 +184,25 @@ struct Loader {
       if (!(area_light->area() > 0.0f)) r.fail(p, "emissive object has zero area");
       scene().lights.push_back(std::move(area_light));
     }
+    ObjectInfo info;
+    info.material = mat;
+    if (shapes.size() == 1 && shapes[0].kind == ShapeKind::Sphere) {
+      info.centre = shapes[0].p0;
+      info.radius = shapes[0].radius();
+    } else {
+      Bounds b;
+      for (const Primitive& s : shapes) b.extend(s.bounds());
+      info.centre = b.centre();
+      for (const Primitive& s : shapes) {
+        for (const Vec3& v : {s.p0, s.p1, s.p2}) info.radius = std::max(info.radius, glm::length(v - info.centre));
+      }
+    }
     for (Primitive& s : shapes) {
       s.light = light;
+      info.area += s.area();
       prims.push_back(s);
     }
+    scene().objects.push_back(info);
   }
 
   void add_triangle(std::vector<Primitive>& shapes, const Vec3& a, const Vec3& b, const Vec3& c, const std::string& p) {

@@ -2,6 +2,7 @@
 #include "trace/integrator.h"
 #include <functional>
 #include "trace/path.h"
+#include "trace/photon_integrator.h"
 #include "trace/whitted.h"
 
 namespace caustica {
@@ -12,6 +13,8 @@ using Maker = std::function<std::unique_ptr<Integrator>(const JsonSource&, const
 const std::vector<std::pair<std::string, Maker>>& table() {
   static const std::vector<std::pair<std::string, Maker>> t = {
       {"path", [](const JsonSource& s, const RenderSettings& r) { return std::make_unique<PathIntegrator>(s, r); }},
+      {"photon", [](const JsonSource& s, const RenderSettings& r) { return std::make_unique<PhotonIntegrator>(s, r, true); }},
+      {"photon-direct", [](const JsonSource& s, const RenderSettings& r) { return std::make_unique<PhotonIntegrator>(s, r, false); }},
       {"whitted", [](const JsonSource& s, const RenderSettings& r) { return std::make_unique<WhittedIntegrator>(s, r); }},
   };
   return t;

@@ -1,0 +1,88 @@
+// Radiance and irradiance estimates, and the precomputed irradiance cache.
+#include "photon/density.h"
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+namespace caustica {
+
+namespace {
+// Shared by both estimates: gathers, filters and sums weight(photon) * power / area.
+template <class Weight>
+Color gather(const PhotonMap& map, const Vec3& p, const Vec3& n_side, const EstimateSettings& s,
+             std::vector<Neighbour>& scratch, EstimateInfo* info, Weight weight_of) {
+  const size_t found = map.knn(p, s.k, s.max_radius, scratch);
+  if (info) *info = EstimateInfo{};
+  if (found == 0) return Color(0.0f);
+  // Fewer than k photons within max_radius: the disc is the whole search radius.
+  const float r2 = found < s.k ? s.max_radius * s.max_radius : scratch.back().dist2;
+  if (!(r2 > 0.0f)) return Color(0.0f);
+  const float r = std::sqrt(r2);
+  Color sum(0.0f);
+  size_t used = 0;
+  for (const Neighbour& nb : scratch) {
+    const Photon& ph = map[nb.index];
+    const Vec3 wi = ph.incoming_dir();
+    if (glm::dot(wi, n_side) <= 0.0f || !normals_agree(ph.surface_normal(), n_side)) continue;
+    Color c = map.power(nb.index) * weight_of(wi);
+    if (s.cone_filter) c *= 1.0f - std::sqrt(nb.dist2) / (s.cone_k * r);
+    sum += c;
+    ++used;
+  }
+  float area = kPi * r2;
+  if (s.cone_filter) area *= 1.0f - 2.0f / (3.0f * s.cone_k);
+  if (info) *info = EstimateInfo{used, r};
+  return sum / area;
+}
+}  // namespace
+
+Color radiance_estimate(const PhotonMap& map, const Vec3& p, const Vec3& n, const Vec3& wo, const Material& m,
+                        const EstimateSettings& s, std::vector<Neighbour>& scratch, EstimateInfo* info) {
+  const Vec3 n_side = glm::dot(wo, n) >= 0 ? n : -n;
+  const Frame frame(n);
+  const Vec3 wo_l = frame.to_local(wo);
+  return gather(map, p, n_side, s, scratch, info,
+                [&](const Vec3& wi) { return m.eval(wo_l, frame.to_local(wi)); });
+}
+
+Color irradiance_estimate(const PhotonMap& map, const Vec3& p, const Vec3& n_side, const EstimateSettings& s,
+                          std::vector<Neighbour>& scratch, EstimateInfo* info) {
+  return gather(map, p, n_side, s, scratch, info, [](const Vec3&) { return Color(1.0f); });
+}
+
+void IrradianceCache::build(const PhotonMap& global, size_t stride, const EstimateSettings& s) {
+  stride = std::max<size_t>(1, stride);
+  const size_t n = (global.size() + stride - 1) / stride;
+  std::vector<Color> irradiance(n);
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 256), [&](const tbb::blocked_range<size_t>& range) {
+    std::vector<Neighbour> scratch;
+    for (size_t i = range.begin(); i != range.end(); ++i) {
+      const Photon& ph = global[uint32_t(i * stride)];
+      irradiance[i] = irradiance_estimate(global, ph.position, ph.surface_normal(), s, scratch);
+    }
+  });
+  double mean = 0;
+  for (const Color& e : irradiance) mean += max_component(e);
+  mean = n > 0 ? mean / double(n) : 1.0;
+  if (!(mean > 0)) mean = 1.0;
+  std::vector<Photon> points(n);
+  for (size_t i = 0; i < n; ++i) {
+    const Photon& ph = global[uint32_t(i * stride)];
+    const Vec3 normal = ph.surface_normal();
+    points[i] = Photon::make(ph.position, irradiance[i] / float(mean), normal, normal, 0);
+  }
+  points_.build(std::move(points), float(mean));
+}
+
+bool IrradianceCache::lookup(const Vec3& p, const Vec3& n_side, float max_radius, Color& E,
+                             std::vector<Neighbour>& scratch) const {
+  points_.knn(p, 8, max_radius, scratch);
+  for (const Neighbour& nb : scratch) {
+    if (normals_agree(points_[nb.index].surface_normal(), n_side)) {
+      E = points_.power(nb.index);
+      return true;
+    }
+  }
+  return false;
+}
+
+}  // namespace caustica

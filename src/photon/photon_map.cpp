@@ -1,0 +1,109 @@
+// kd-tree over photons with nanoflann.
+#include "photon/photon_map.h"
+#include <nanoflann.hpp>
+
+namespace caustica {
+namespace {
+
+struct PhotonCloud {
+  const std::vector<Photon>* photons = nullptr;
+  size_t kdtree_get_point_count() const { return photons->size(); }
+  float kdtree_get_pt(uint32_t i, size_t dim) const { return (*photons)[i].position[int(dim)]; }
+  template <class B>
+  bool kdtree_get_bbox(B&) const { return false; }
+};
+
+// k nearest within a maximum squared radius: the search prunes at min(radius, k-th distance).
+class KnnWithinRadius {
+ public:
+  using DistanceType = float;
+  using IndexType = uint32_t;
+  KnnWithinRadius(size_t k, float max_dist2, std::vector<Neighbour>& out) : k_(k), max_dist2_(max_dist2), out_(out) {
+    out_.clear();
+  }
+  size_t size() const { return out_.size(); }
+  bool full() const { return out_.size() == k_; }
+  float worstDist() const { return full() ? out_.back().dist2 : max_dist2_; }
+  bool addPoint(float dist2, uint32_t index) {
+    if (dist2 >= worstDist()) return true;
+    if (full()) out_.pop_back();
+    auto it = out_.end();
+    while (it != out_.begin() && (it - 1)->dist2 > dist2) --it;
+    out_.insert(it, Neighbour{index, dist2});
+    return true;
+  }
+
+ private:
+  size_t k_;
+  float max_dist2_;
+  std::vector<Neighbour>& out_;
+};
+
+class WithinRadius {
+ public:
+  using DistanceType = float;
+  using IndexType = uint32_t;
+  WithinRadius(float dist2, std::vector<Neighbour>& out) : dist2_(dist2), out_(out) { out_.clear(); }
+  size_t size() const { return out_.size(); }
+  bool full() const { return true; }
+  float worstDist() const { return dist2_; }
+  bool addPoint(float dist2, uint32_t index) {
+    if (dist2 < dist2_) out_.push_back(Neighbour{index, dist2});
+    return true;
+  }
+
+ private:
+  float dist2_;
+  std::vector<Neighbour>& out_;
+};
+
+using KdTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<float, PhotonCloud, float, uint32_t>,
+                                                   PhotonCloud, 3, uint32_t>;
+}  // namespace
+
+struct PhotonMap::Tree {
+  PhotonCloud cloud;
+  std::unique_ptr<KdTree> index;
+};
+
+PhotonMap::PhotonMap() = default;
+PhotonMap::~PhotonMap() = default;
+PhotonMap::PhotonMap(PhotonMap&&) noexcept = default;
+PhotonMap& PhotonMap::operator=(PhotonMap&&) noexcept = default;
+
+void PhotonMap::build(std::vector<Photon> photons, float flux_scale, size_t leaf_size) {
+  photons_ = std::move(photons);
+  photons_.shrink_to_fit();
+  flux_scale_ = flux_scale;
+  tree_ = std::make_unique<Tree>();
+  tree_->cloud.photons = &photons_;
+  if (photons_.empty()) return;
+  tree_->index = std::make_unique<KdTree>(3, tree_->cloud, nanoflann::KDTreeSingleIndexAdaptorParams(leaf_size));
+  tree_->index->buildIndex();
+}
+
+size_t PhotonMap::knn(const Vec3& p, size_t k, float max_radius, std::vector<Neighbour>& out) const {
+  out.clear();
+  if (!tree_ || !tree_->index || k == 0) return 0;
+  KnnWithinRadius result(k, max_radius * max_radius, out);
+  const float q[3] = {p.x, p.y, p.z};
+  tree_->index->findNeighbors(result, q, nanoflann::SearchParams());
+  return out.size();
+}
+
+size_t PhotonMap::radius_query(const Vec3& p, float radius, std::vector<Neighbour>& out) const {
+  out.clear();
+  if (!tree_ || !tree_->index) return 0;
+  WithinRadius result(radius * radius, out);
+  const float q[3] = {p.x, p.y, p.z};
+  tree_->index->findNeighbors(result, q, nanoflann::SearchParams());
+  return out.size();
+}
+
+size_t PhotonMap::memory_bytes() const {
+  size_t bytes = photons_.capacity() * sizeof(Photon);
+  if (tree_ && tree_->index) bytes += tree_->index->usedMemory(*tree_->index);
+  return bytes;
+}
+
+}  // namespace caustica

@@ -1,0 +1,47 @@
+// A photon map: photon records in a nanoflann kd-tree (uint32 indices) behind build, knn, radius_query.
+#pragma once
+#include <memory>
+#include <vector>
+#include "photon/photon.h"
+
+namespace caustica {
+
+struct Neighbour {
+  uint32_t index;
+  float dist2;
+};
+
+class PhotonMap {
+ public:
+  PhotonMap();
+  ~PhotonMap();
+  PhotonMap(PhotonMap&&) noexcept;
+  PhotonMap& operator=(PhotonMap&&) noexcept;
+
+  // Takes the photons and builds the kd-tree. leaf_size was tuned by bench/ (see BENCHMARKS.md).
+  // flux_scale multiplies every record's stored power (see Photon).
+  void build(std::vector<Photon> photons, float flux_scale = 1.0f, size_t leaf_size = kDefaultLeafSize);
+  Color power(uint32_t i) const { return photons_[i].power() * flux_scale_; }
+  float flux_scale() const { return flux_scale_; }
+  // The k nearest photons within max_radius, nearest first. Returns how many were found.
+  size_t knn(const Vec3& p, size_t k, float max_radius, std::vector<Neighbour>& out) const;
+  // All photons within radius (unsorted).
+  size_t radius_query(const Vec3& p, float radius, std::vector<Neighbour>& out) const;
+
+  const std::vector<Photon>& photons() const { return photons_; }
+  const Photon& operator[](uint32_t i) const { return photons_[i]; }
+  size_t size() const { return photons_.size(); }
+  bool empty() const { return photons_.empty(); }
+  // Bytes of photon records plus kd-tree index (nodes and index array).
+  size_t memory_bytes() const;
+
+  static constexpr size_t kDefaultLeafSize = 32;
+
+ private:
+  struct Tree;
+  std::vector<Photon> photons_;
+  float flux_scale_ = 1.0f;
+  std::unique_ptr<Tree> tree_;
+};
+
+}  // namespace caustica

@@ -1,0 +1,207 @@
+// Photon tracing in parallel over fixed chunks of photon indices, merged in index order.
+#include "photon/photon_tracer.h"
+#include <chrono>
+#include <tbb/parallel_for.h>
+#include "core/sampler.h"
+
+namespace caustica {
+namespace {
+
+constexpr uint64_t kChunk = 4096;  // emitted photons per chunk
+
+struct PendingPhoton {
+  Vec3 position;
+  Color flux;  // before division by the number emitted
+  Vec3 incoming, normal;
+  int bounces;
+};
+
+struct Aim {
+  Vec3 centre;
+  float radius;
+};
+
+class Emitter {
+ public:
+  Emitter(const Scene& scene, bool caustic) : scene_(scene), caustic_(caustic) {
+    for (const ObjectInfo& o : scene.objects) {
+      if (scene.materials[o.material]->is_delta()) targets_.push_back({o.centre, o.radius});
+    }
+  }
+  bool has_targets() const { return !targets_.empty(); }
+
+  // Returns false when the sampled photon carries no flux.
+  bool emit(Rng& rng, Ray& ray, Color& flux) const {
+    float pmf;
+    const Light* light = scene_.sample_light(rng.next_float(), pmf);
+    if (!light || pmf <= 0) return false;
+    const Vec2 u_pos(rng.next_float(), rng.next_float());
+    const Vec2 u_dir(rng.next_float(), rng.next_float());
+    if (!caustic_) {
+      const EmittedPhoton e = light->sample_emission(u_pos, u_dir);
+      flux = e.flux / pmf;
+      ray = glm::dot(e.normal, e.normal) > 0 ? spawn_ray(e.origin, e.normal, e.dir) : Ray{e.origin, e.dir};
+      return true;
+    }
+    // Aim at one specular object's bounding sphere, chosen uniformly; the direction density
+    // is the mixture over all objects whose cone contains the direction.
+    Vec3 normal;
+    float pdf_pos;
+    const Vec3 origin = light->sample_origin(u_pos, normal, pdf_pos);
+    const size_t j = std::min(targets_.size() - 1, size_t(rng.next_float() * targets_.size()));
+    const Vec3 dir = sample_towards(origin, targets_[j], u_dir);
+    float pdf_dir = 0;
+    for (const Aim& a : targets_) pdf_dir += cone_pdf(origin, a, dir);
+    pdf_dir /= float(targets_.size());
+    const Color intensity = light->emitted_towards(normal, dir);
+    if (pdf_dir <= 0 || is_black(intensity)) return false;
+    flux = intensity / (pdf_pos * pdf_dir * pmf);
+    ray = glm::dot(normal, normal) > 0 ? spawn_ray(origin, normal, dir) : Ray{origin, dir};
+    return true;
+  }
+
+ private:
+  static bool inside(const Vec3& o, const Aim& a, float& d, float& cos_max) {
+    d = glm::length(a.centre - o);
+    if (d <= a.radius * 1.0001f) return true;
+    cos_max = std::sqrt(std::max(0.0f, 1.0f - (a.radius * a.radius) / (d * d)));
+    return false;
+  }
+  static Vec3 sample_towards(const Vec3& o, const Aim& a, const Vec2& u) {
+    float d, cos_max;
+    if (inside(o, a, d, cos_max)) return sample_uniform_sphere(u);
+    return Frame((a.centre - o) / d).to_world(sample_uniform_cone(u, cos_max));
+  }
+  static float cone_pdf(const Vec3& o, const Aim& a, const Vec3& dir) {
+    float d, cos_max;
+    if (inside(o, a, d, cos_max)) return uniform_sphere_pdf();
+    if (glm::dot(dir, (a.centre - o) / d) < cos_max) return 0.0f;
+    return uniform_cone_pdf(cos_max);
+  }
+
+  const Scene& scene_;
+  bool caustic_;
+  std::vector<Aim> targets_;
+};
+
+// Follows one photon; appends what it stores to `out`.
+void trace_photon(const Scene& scene, Ray ray, Color flux, bool caustic, int max_depth, Rng& rng,
+                  std::vector<PendingPhoton>& out) {
+  int specular_bounces = 0;
+  for (int depth = 0; depth < max_depth; ++depth) {
+    SurfaceHit hit;
+    if (!scene.intersect(ray, hit)) return;
+    const Vec3 wo = -ray.dir;
+    const Vec3 wo_l = hit.frame.to_local(wo);
+    const Material& m = *hit.material;
+    if (m.is_diffuse()) {
+      const Vec3 n_side = wo_l.z >= 0 ? hit.n : -hit.n;
+      if (caustic) {
+        if (specular_bounces > 0) out.push_back({hit.p, flux, wo, n_side, depth});
+        return;  // the caustic map keeps only L S+ D
+      }
+      out.push_back({hit.p, flux, wo, n_side, depth});
+    }
+    BsdfSample bs;
+    const Vec2 u(rng.next_float(), rng.next_float());
+    if (!m.sample(wo_l, u, rng.next_float(), bs)) return;
+    if (m.is_diffuse()) {
+      // Russian roulette with the albedo as survival probability (Jensen 2001, sec. 5.3).
+      const float survive = std::min(1.0f, max_component(m.albedo()));
+      if (survive <= 0 || rng.next_float() >= survive) return;
+      flux *= bs.weight / survive;
+    } else {
+      flux *= bs.weight;
+      ++specular_bounces;
+      if (is_black(flux)) return;
+    }
+    ray = spawn_ray(hit.p, hit.n, hit.frame.to_world(bs.wi));
+  }
+}
+
+// Emits photons until `wanted` are stored; returns them normalised by the number emitted.
+std::vector<Photon> run_map(const Scene& scene, const PhotonPassSettings& s, bool caustic, uint64_t& emitted_out,
+                            float& flux_scale, std::vector<std::string>& warnings) {
+  std::vector<Photon> result;
+  emitted_out = 0;
+  const size_t wanted = caustic ? s.caustic_photons : s.global_photons;
+  if (wanted == 0 || scene.lights.empty()) return result;
+  const Emitter emitter(scene, caustic);
+  if (caustic && !emitter.has_targets()) return result;
+  // Cap on emission, so a scene that stores (almost) nothing still ends.
+  const uint64_t cap = uint64_t(wanted) * (caustic ? 200 : 50) + 1000000;
+  const uint64_t stream = caustic ? 1 : 0;
+
+  std::vector<PendingPhoton> pending;
+  pending.reserve(wanted + 64);
+  uint64_t emitted = 0;
+  uint64_t chunks_in_round = 8;
+  bool done = false;
+  while (!done && emitted < cap) {
+    if (s.cancel && s.cancel->load()) break;
+    std::vector<std::vector<PendingPhoton>> chunk_out(chunks_in_round);
+    std::vector<std::vector<uint32_t>> chunk_counts(chunks_in_round);  // stored per emitted photon
+    const uint64_t first = emitted;
+    tbb::parallel_for(uint64_t(0), chunks_in_round, [&](uint64_t c) {
+      auto& out = chunk_out[c];
+      auto& counts = chunk_counts[c];
+      counts.reserve(kChunk);
+      for (uint64_t i = first + c * kChunk; i < first + (c + 1) * kChunk; ++i) {
+        Rng rng(hash_seed(i, s.seed, stream));
+        const size_t before = out.size();
+        Ray ray;
+        Color flux;
+        if (emitter.emit(rng, ray, flux)) trace_photon(scene, ray, flux, caustic, s.max_depth, rng, out);
+        counts.push_back(uint32_t(out.size() - before));
+      }
+    });
+    // Merge in photon-index order and stop at the photon that completes the wanted count.
+    for (uint64_t c = 0; c < chunks_in_round && !done; ++c) {
+      size_t offset = 0;
+      for (uint32_t n : chunk_counts[c]) {
+        for (uint32_t k = 0; k < n; ++k) pending.push_back(chunk_out[c][offset + k]);
+        offset += n;
+        ++emitted;
+        if (pending.size() >= wanted || emitted >= cap) {
+          done = true;
+          break;
+        }
+      }
+    }
+    // Size the next round from the storage rate seen so far (deterministic).
+    const double rate = emitted > 0 ? double(pending.size()) / double(emitted) : 0.0;
+    const double need = rate > 0 ? double(wanted - std::min(wanted, pending.size())) / rate : double(cap);
+    chunks_in_round = std::clamp<uint64_t>(uint64_t(need * 1.05 / kChunk) + 1, 1, 256);
+  }
+  if (pending.size() < wanted && emitted >= cap) {
+    warnings.push_back(std::string(caustic ? "caustic" : "global") + " photon map: only " +
+                       std::to_string(pending.size()) + " of " + std::to_string(wanted) + " photons stored after " +
+                       std::to_string(emitted) + " emitted (the cap); most photons escape or miss " +
+                       (caustic ? "the specular objects" : "diffuse surfaces"));
+  }
+  emitted_out = emitted;
+  result.reserve(pending.size());
+  // Records hold flux / flux_scale, near 1, where half floats are most precise.
+  double mean = 0;
+  for (const PendingPhoton& p : pending) mean += max_component(p.flux);
+  mean = pending.empty() ? 1.0 : mean / double(pending.size());
+  flux_scale = float(mean / double(std::max<uint64_t>(emitted, 1)));
+  const float inv = mean > 0 ? float(1.0 / mean) : 0.0f;
+  for (const PendingPhoton& p : pending) {
+    result.push_back(Photon::make(p.position, p.flux * inv, p.incoming, p.normal, p.bounces));
+  }
+  return result;
+}
+
+}  // namespace
+
+PhotonPassResult trace_photons(const Scene& scene, const PhotonPassSettings& settings) {
+  const auto t0 = std::chrono::steady_clock::now();
+  PhotonPassResult r;
+  r.global = run_map(scene, settings, false, r.global_emitted, r.global_scale, r.warnings);
+  r.caustic = run_map(scene, settings, true, r.caustic_emitted, r.caustic_scale, r.warnings);
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return r;
+}
+
+}  // namespace caustica

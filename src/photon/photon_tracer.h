@@ -1,0 +1,35 @@
+// The photon pass: shoot photons from the lights, store them at diffuse surfaces.
+#pragma once
+#include <atomic>
+#include <string>
+#include <vector>
+#include "core/scene.h"
+#include "photon/photon.h"
+
+namespace caustica {
+
+struct PhotonPassSettings {
+  size_t global_photons = 200000;   // stored photons wanted in the global map
+  size_t caustic_photons = 200000;  // stored photons wanted in the caustic map (0: no caustic map)
+  int max_depth = 16;               // bounces per photon path
+  uint64_t seed = 0;
+  const std::atomic<bool>* cancel = nullptr;
+};
+
+struct PhotonPassResult {
+  std::vector<Photon> global, caustic;
+  uint64_t global_emitted = 0, caustic_emitted = 0;
+  float global_scale = 1, caustic_scale = 1;  // a photon's flux is record.power() * scale
+  double seconds = 0;
+  std::vector<std::string> warnings;
+};
+
+// Global map: photons emitted in proportion to light power (area lights: uniform point,
+// cosine direction; point lights: uniform sphere), stored at every diffuse hit, Russian
+// roulette by albedo. Caustic map: a separate emission aimed at the bounding spheres of the
+// specular objects, stored only at the first diffuse hit of an L S+ D path.
+// Emission continues until the wanted counts are stored (or a cap is reached, with a warning).
+// Photon i is seeded from hash(i, seed): the maps are the same for any thread count.
+PhotonPassResult trace_photons(const Scene& scene, const PhotonPassSettings& settings);
+
+}  // namespace caustica

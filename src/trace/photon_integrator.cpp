@@ -1,0 +1,193 @@
+// Photon mapping eye pass: at the first diffuse hit, direct light by shadow rays, caustics
+// from the caustic map, indirect light by final gathering into the global map (Jensen 1996).
+#include "trace/photon_integrator.h"
+#include <chrono>
+#include <iostream>
+#include <sstream>
+#include "photon/photon_tracer.h"
+#include "trace/direct.h"
+
+namespace caustica {
+namespace {
+thread_local std::vector<Neighbour> tls_scratch;
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+}  // namespace
+
+PhotonSettings PhotonSettings::read(const JsonSource& src, const RenderSettings& render, bool final_gather) {
+  JsonReader r(src.file);
+  const auto& v = src.value;
+  if (final_gather) {
+    r.check_object(v, src.pointer, {"photons", "caustic_photons", "global_k", "caustic_k", "global_radius",
+                                    "caustic_radius", "gather_rays", "direct_samples", "irradiance_stride"});
+  } else {
+    r.check_object(v, src.pointer, {"photons", "caustic_photons", "global_k", "caustic_k", "global_radius", "caustic_radius"});
+  }
+  PhotonSettings s;
+  s.max_depth = render.max_depth;
+  auto integer = [&](const char* key, auto& field, int64_t lo, int64_t hi) {
+    if (v.contains(key)) field = static_cast<std::decay_t<decltype(field)>>(r.integer(v[key], child(src.pointer, key), lo, hi));
+  };
+  auto number = [&](const char* key, float& field) {
+    if (v.contains(key)) field = float(r.number_in(v[key], child(src.pointer, key), 0.0, 1e30));
+  };
+  integer("photons", s.photons, 0, int64_t(1) << 31);
+  integer("caustic_photons", s.caustic_photons, 0, int64_t(1) << 31);
+  integer("global_k", s.global_k, 1, 10000);
+  integer("caustic_k", s.caustic_k, 1, 10000);
+  number("global_radius", s.global_radius);
+  number("caustic_radius", s.caustic_radius);
+  integer("gather_rays", s.gather_rays, 0, 1 << 16);
+  integer("direct_samples", s.direct_samples, 1, 1 << 16);
+  integer("irradiance_stride", s.irradiance_stride, 0, 1 << 20);
+  return s;
+}
+
+PhotonIntegrator::PhotonIntegrator(const JsonSource& settings, const RenderSettings& render, bool final_gather)
+    : final_gather_(final_gather), settings_(PhotonSettings::read(settings, render, final_gather)) {}
+
+void PhotonIntegrator::preprocess(const Scene& scene, const PreprocessContext& context) {
+  PhotonPassSettings pass;
+  pass.global_photons = settings_.photons;
+  pass.caustic_photons = final_gather_ ? settings_.caustic_photons : 0;
+  pass.max_depth = settings_.max_depth;
+  pass.seed = context.seed;
+  PhotonPassResult r = trace_photons(scene, pass);
+  stats_.photon_seconds = r.seconds;
+  stats_.global_emitted = r.global_emitted;
+  stats_.caustic_emitted = r.caustic_emitted;
+  for (const auto& w : r.warnings) {
+    if (!context.quiet) std::cerr << "warning: " << w << "\n";
+    warnings_.push_back(w);
+  }
+  const size_t n_global = r.global.size(), n_caustic = r.caustic.size();
+  auto t0 = std::chrono::steady_clock::now();
+  global_.build(std::move(r.global), r.global_scale);
+  caustic_.build(std::move(r.caustic), r.caustic_scale);
+  stats_.build_seconds = seconds_since(t0);
+  stats_.global_bytes = global_.memory_bytes();
+  stats_.caustic_bytes = caustic_.memory_bytes();
+
+  // Default radii from the photon density on the scene's surfaces: a disc holding k photons
+  // if they were spread evenly, widened 3x for the global map (it also bounds dim regions).
+  const float area = std::max(scene.surface_area(), 1e-12f);
+  global_est_.k = size_t(settings_.global_k);
+  global_est_.max_radius = settings_.global_radius > 0
+      ? settings_.global_radius
+      : 3.0f * std::sqrt(float(settings_.global_k) * area / (kPi * float(std::max<size_t>(n_global, 1))));
+  caustic_est_.k = size_t(settings_.caustic_k);
+  caustic_est_.cone_filter = true;
+  caustic_est_.max_radius = settings_.caustic_radius > 0
+      ? settings_.caustic_radius
+      : std::sqrt(float(settings_.caustic_k) * area / (kPi * float(std::max<size_t>(n_caustic, 1))));
+
+  if (final_gather_ && settings_.irradiance_stride > 0 && !global_.empty()) {
+    t0 = std::chrono::steady_clock::now();
+    irradiance_.build(global_, size_t(settings_.irradiance_stride), global_est_);
+    stats_.irradiance_seconds = seconds_since(t0);
+    stats_.irradiance_bytes = irradiance_.memory_bytes();
+  }
+}
+
+Color PhotonIntegrator::indirect_at(const SurfaceHit& hit, const Vec3& wo, std::vector<Neighbour>& scratch) const {
+  const Vec3 n_side = glm::dot(wo, hit.n) >= 0 ? hit.n : -hit.n;
+  if (irradiance_.size() > 0) {
+    Color E;
+    if (irradiance_.lookup(hit.p, n_side, global_est_.max_radius, E, scratch)) return hit.material->albedo() * kInvPi * E;
+  }
+  return radiance_estimate(global_, hit.p, hit.n, wo, *hit.material, global_est_, scratch);
+}
+
+Color PhotonIntegrator::final_gather(const Scene& scene, const SurfaceHit& hit, const Vec3& wo, Sampler& sampler,
+                                     std::vector<Neighbour>& scratch) const {
+  const int n = settings_.gather_rays;
+  if (n <= 0) return Color(0.0f);
+  const Vec3 wo_l = hit.frame.to_local(wo);
+  // Stratified over an sx x sy grid; the remainder unstratified.
+  const int sx = std::max(1, int(std::sqrt(float(n)))), sy = n / sx;
+  Color sum(0.0f);
+  for (int i = 0; i < n; ++i) {
+    Vec2 u = sampler.next2d();
+    if (i < sx * sy) u = Vec2((float(i % sx) + u.x) / float(sx), (float(i / sx) + u.y) / float(sy));
+    BsdfSample bs;
+    if (!hit.material->sample(wo_l, u, 0.0f, bs)) continue;
+    Color throughput = bs.weight;
+    Ray ray = spawn_ray(hit.p, hit.n, hit.frame.to_world(bs.wi));
+    for (int depth = 0; depth < settings_.max_depth; ++depth) {
+      SurfaceHit g;
+      ++sampler.rays;
+      if (!scene.intersect(ray, g)) break;
+      const Material& m = *g.material;
+      if (m.is_diffuse()) {
+        // Emission reached by a gather ray is not counted: direct light already was.
+        sum += throughput * indirect_at(g, -ray.dir, scratch);
+        break;
+      }
+      BsdfSample ss;
+      const Vec3 gwo = g.frame.to_local(-ray.dir);
+      const Vec2 us = sampler.next2d();
+      if (!m.sample(gwo, us, sampler.next1d(), ss)) break;
+      throughput *= ss.weight;
+      ray = spawn_ray(g.p, g.n, g.frame.to_world(ss.wi));
+    }
+  }
+  return sum / float(n);
+}
+
+Color PhotonIntegrator::Li(const Ray& camera_ray, const Scene& scene, Sampler& sampler) const {
+  std::vector<Neighbour>& scratch = tls_scratch;
+  Color L(0.0f), beta(1.0f);
+  Ray ray = camera_ray;
+  for (int depth = 0; depth < settings_.max_depth; ++depth) {
+    SurfaceHit hit;
+    ++sampler.rays;
+    if (!scene.intersect(ray, hit)) break;
+    const Vec3 wo = -ray.dir;
+    const Vec3 wo_l = hit.frame.to_local(wo);
+    const Material& m = *hit.material;
+    L += beta * m.emitted(wo_l);  // seen directly or through mirrors and glass only
+    if (m.is_diffuse()) {
+      if (!final_gather_) return L + beta * radiance_estimate(global_, hit.p, hit.n, wo, m, global_est_, scratch);
+      Color direct(0.0f);
+      for (int i = 0; i < settings_.direct_samples; ++i) direct += estimate_direct(scene, hit, wo, sampler);
+      L += beta * direct / float(settings_.direct_samples);
+      if (!caustic_.empty()) L += beta * radiance_estimate(caustic_, hit.p, hit.n, wo, m, caustic_est_, scratch);
+      L += beta * final_gather(scene, hit, wo, sampler, scratch);
+      return L;
+    }
+    BsdfSample bs;
+    const Vec2 u = sampler.next2d();
+    if (!m.sample(wo_l, u, sampler.next1d(), bs)) break;
+    beta *= bs.weight;
+    ray = spawn_ray(hit.p, hit.n, hit.frame.to_world(bs.wi));
+  }
+  return L;
+}
+
+std::string PhotonIntegrator::describe() const {
+  std::ostringstream s;
+  const size_t ng = global_.size(), nc = caustic_.size();
+  s << "photons (global, wanted): " << settings_.photons << "\n";
+  if (final_gather_) s << "caustic photons (wanted): " << settings_.caustic_photons << "\n";
+  s << "global map: " << ng << " stored of " << stats_.global_emitted << " emitted, k " << global_est_.k
+    << ", max radius " << global_est_.max_radius << "\n";
+  if (final_gather_) {
+    s << "caustic map: " << nc << " stored of " << stats_.caustic_emitted << " emitted, k " << caustic_est_.k
+      << ", max radius " << caustic_est_.max_radius << ", cone filter k " << caustic_est_.cone_k << "\n";
+    s << "gather rays: " << settings_.gather_rays << "\ndirect samples: " << settings_.direct_samples << "\n";
+    s << "precomputed irradiance: " << (settings_.irradiance_stride > 0 ? "every " + std::to_string(settings_.irradiance_stride) + "th global photon (" + std::to_string(irradiance_.size()) + " points)" : std::string("off")) << "\n";
+  }
+  s << "max_depth: " << settings_.max_depth << "\n";
+  s << "photon pass time: " << stats_.photon_seconds << " s\n";
+  s << "kd-tree build time: " << stats_.build_seconds << " s\n";
+  if (final_gather_) s << "irradiance precompute time: " << stats_.irradiance_seconds << " s\n";
+  const size_t total = ng + nc;
+  if (total > 0) {
+    s << "bytes per photon (records + kd-tree): "
+      << double(stats_.global_bytes + stats_.caustic_bytes) / double(total) << "\n";
+  }
+  return s.str();
+}
+
+}  // namespace caustica

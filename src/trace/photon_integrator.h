@@ -1,0 +1,61 @@
+// Jensen's two-pass photon mapping (`photon`), and the global map viewed directly (`photon-direct`).
+#pragma once
+#include "photon/density.h"
+#include "photon/photon_map.h"
+#include "trace/integrator.h"
+
+namespace caustica {
+
+struct PhotonSettings {
+  size_t photons = 200000;          // stored in the global map
+  size_t caustic_photons = 200000;  // stored in the caustic map
+  int global_k = 50;
+  int caustic_k = 80;
+  float global_radius = 0;   // 0: chosen from the scene's area and the photon count
+  float caustic_radius = 0;  // 0: likewise
+  int gather_rays = 32;      // final-gather rays per first diffuse hit
+  int direct_samples = 1;    // shadow-ray samples per first diffuse hit
+  int irradiance_stride = 4; // precompute irradiance at every n-th global photon; 0: off
+  int max_depth = 16;        // from the render block
+
+  // Reads and validates the integrator block; unknown keys are errors.
+  static PhotonSettings read(const JsonSource& src, const RenderSettings& render, bool final_gather);
+};
+
+struct PhotonStats {
+  double photon_seconds = 0, build_seconds = 0, irradiance_seconds = 0;
+  uint64_t global_emitted = 0, caustic_emitted = 0;
+  size_t global_bytes = 0, caustic_bytes = 0, irradiance_bytes = 0;
+};
+
+class PhotonIntegrator final : public Integrator {
+ public:
+  PhotonIntegrator(const JsonSource& settings, const RenderSettings& render, bool final_gather);
+  void preprocess(const Scene& scene, const PreprocessContext& context) override;
+  Color Li(const Ray& ray, const Scene& scene, Sampler& sampler) const override;
+  std::string name() const override { return final_gather_ ? "photon" : "photon-direct"; }
+  std::string describe() const override;
+
+  const PhotonMap& global_map() const { return global_; }
+  const PhotonMap& caustic_map() const { return caustic_; }
+  const PhotonSettings& settings() const { return settings_; }
+  const PhotonStats& stats() const { return stats_; }
+  // The estimate settings in use after preprocess (radii resolved).
+  const EstimateSettings& global_estimate() const { return global_est_; }
+  const EstimateSettings& caustic_estimate() const { return caustic_est_; }
+
+ private:
+  Color final_gather(const Scene& scene, const SurfaceHit& hit, const Vec3& wo, Sampler& sampler,
+                     std::vector<Neighbour>& scratch) const;
+  Color indirect_at(const SurfaceHit& hit, const Vec3& wo, std::vector<Neighbour>& scratch) const;
+
+  bool final_gather_;
+  PhotonSettings settings_;
+  PhotonStats stats_;
+  PhotonMap global_, caustic_;
+  IrradianceCache irradiance_;
+  EstimateSettings global_est_, caustic_est_;
+  std::vector<std::string> warnings_;
+};
+
+}  // namespace caustica

@@ -1,0 +1,77 @@
+// Photon mapping against analytic results and against the path tracer.
+#include <catch2/catch.hpp>
+#include "support/render_util.h"
+#include "support/scenes.h"
+#include "trace/photon_integrator.h"
+
+using namespace caustica;
+using test::region_mean;
+using test::render_text;
+
+TEST_CASE("photon: furnace reads Le / (1 - albedo) within 2 %", "[trace][photon][furnace]") {
+  const std::string scene = test::furnace_scene(0.5, 1.0, R"({"type": "photon"})");
+  const auto r = render_text(scene, "photon", R"({"photons": 100000, "gather_rays": 16})", 4, 24, 24);
+  const Color mean = r.image.mean();
+  INFO("mean " << mean.x << " " << mean.y << " " << mean.z);
+  for (int c = 0; c < 3; ++c) CHECK(mean[c] == Approx(2.0).epsilon(0.02));
+  CHECK(r.stats.bad_samples == 0);
+}
+
+TEST_CASE("photon-direct: furnace reads Le / (1 - albedo) within 3 %", "[trace][photon][furnace]") {
+  const std::string scene = test::furnace_scene(0.5, 1.0, R"({"type": "photon-direct"})");
+  const auto r = render_text(scene, "photon-direct", R"({"photons": 200000})", 4, 24, 24);
+  for (int c = 0; c < 3; ++c) CHECK(r.image.mean()[c] == Approx(2.0).epsilon(0.03));
+}
+
+TEST_CASE("photon: identical pixels for 1 and 2 threads", "[trace][photon][determinism]") {
+  const std::string scene = test::read_scene_file("tests/data/tiny.json");
+  const char* settings = R"({"photons": 20000, "caustic_photons": 5000, "gather_rays": 8})";
+  const auto one = render_text(scene, "photon", settings, 2, 16, 16, 9, 1);
+  const auto two = render_text(scene, "photon", settings, 2, 16, 16, 9, 2);
+  CHECK(one.image.mean().x > 0.01f);
+  CHECK(one.image.pixels == two.image.pixels);
+}
+
+TEST_CASE("photon: matches the path tracer on the Cornell box (mean 3 %, 4x4 regions 5 %)", "[trace][photon][reference]") {
+  const std::string scene = test::read_scene_file("scenes/cornell-box.json");
+  const int size = 64;
+  const auto ref = render_text(scene, "path", "{}", 512, size, size, 3);
+  const auto pm = render_text(scene, "photon", R"({"photons": 200000, "gather_rays": 16})", 32, size, size, 4);
+  const glm::dvec3 ref_mean = region_mean(ref.image, 0, 0, size, size);
+  const glm::dvec3 pm_mean = region_mean(pm.image, 0, 0, size, size);
+  INFO("path " << ref_mean.x << " " << ref_mean.y << " " << ref_mean.z << "; photon " << pm_mean.x << " "
+               << pm_mean.y << " " << pm_mean.z);
+  for (int c = 0; c < 3; ++c) CHECK(pm_mean[c] == Approx(ref_mean[c]).epsilon(0.03));
+  const int cell = size / 4;
+  for (int gy = 0; gy < 4; ++gy) {
+    for (int gx = 0; gx < 4; ++gx) {
+      const glm::dvec3 a = region_mean(ref.image, gx * cell, gy * cell, (gx + 1) * cell, (gy + 1) * cell);
+      const glm::dvec3 b = region_mean(pm.image, gx * cell, gy * cell, (gx + 1) * cell, (gy + 1) * cell);
+      const double la = (a.x + a.y + a.z) / 3, lb = (b.x + b.y + b.z) / 3;
+      INFO("region " << gx << "," << gy << ": path " << la << " photon " << lb);
+      CHECK(lb == Approx(la).epsilon(0.05));
+    }
+  }
+}
+
+TEST_CASE("photon: caustic centre under a glass sphere matches the path tracer within 10 %", "[trace][photon][caustic]") {
+  // A glass ball over a floor under a 2x2 area light; the camera looks straight down at the
+  // caustic. The path tracer finds the caustic only by hitting the light through the glass,
+  // so a large light keeps its reference affordable.
+  const char* scene = R"({
+    "camera": {"position": [0, 3, 3], "look_at": [0, 0, 0], "fov": 6},
+    "materials": {"white": {"type": "diffuse", "albedo": 0.8}, "glass": {"type": "glass", "ior": 1.5},
+                  "lamp": {"type": "diffuse", "albedo": 0, "emission": 10}},
+    "objects": [{"type": "quad", "origin": [-10, 0, -10], "edge1": [0, 0, 20], "edge2": [20, 0, 0], "material": "white"},
+                {"type": "sphere", "center": [0, 1, 0], "radius": 0.5, "material": "glass"},
+                {"type": "quad", "origin": [-1, 5, -1], "edge1": [2, 0, 0], "edge2": [0, 0, 2], "material": "lamp"}]
+  })";
+  // The camera sees the floor under the ball, just past its edge; the caustic is in the centre.
+  const auto ref = render_text(scene, "path", "{}", 2048, 16, 16, 5);
+  const auto pm = render_text(scene, "photon", R"({"photons": 100000, "caustic_photons": 200000, "gather_rays": 16})", 16, 16, 16, 6);
+  const glm::dvec3 a = region_mean(ref.image, 4, 4, 12, 12), b = region_mean(pm.image, 4, 4, 12, 12);
+  INFO("path " << a.x << ", photon " << b.x);
+  CHECK(b.x == Approx(a.x).epsilon(0.10));
+  // The caustic is much brighter than the floor lit directly would be in the sphere's shadow.
+  CHECK(a.x > 1.0);
+}
