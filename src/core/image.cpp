@@ -3,7 +3,9 @@
 #include <OpenImageIO/imageio.h>
 #include <algorithm>
 #include <atomic>
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <unistd.h>
 #include "core/json_reader.h"
@@ -46,6 +48,46 @@ float linear_to_srgb(float v) {
   return v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f;
 }
 
+namespace {
+
+static_assert(sizeof(Color) == 3 * sizeof(float), "PFM rows are written straight from the pixels");
+
+bool write_pfm(const std::string& path, const Image& image) {
+  std::FILE* f = std::fopen(path.c_str(), "wb");
+  if (!f) return false;
+  bool ok = std::fprintf(f, "PF\n%d %d\n-1.0\n", image.width, image.height) > 0;
+  for (int y = image.height - 1; y >= 0 && ok; --y) {
+    ok = std::fwrite(&image.at(0, y), sizeof(Color), size_t(image.width), f) == size_t(image.width);
+  }
+  return std::fclose(f) == 0 && ok;
+}
+
+// Returns an error message, empty on success.
+std::string write_with_oiio(const std::string& path, const Image& image, float exposure, bool ldr) {
+  auto out = OIIO::ImageOutput::create(path);
+  if (!out) return "cannot create an image writer: " + OIIO::geterror();
+  OIIO::ImageSpec spec(image.width, image.height, 3, ldr ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::FLOAT);
+  spec.attribute("oiio:ColorSpace", ldr ? "sRGB" : "Linear");
+  if (!out->open(path, spec)) return out->geterror();
+  bool ok;
+  if (ldr) {
+    const float scale = std::exp2(exposure);
+    std::vector<unsigned char> bytes(image.pixels.size() * 3);
+    for (size_t i = 0; i < image.pixels.size(); ++i) {
+      for (int c = 0; c < 3; ++c) {
+        bytes[3 * i + c] = static_cast<unsigned char>(std::lround(255.0f * linear_to_srgb(image.pixels[i][c] * scale)));
+      }
+    }
+    ok = out->write_image(OIIO::TypeDesc::UINT8, bytes.data());
+  } else {
+    ok = out->write_image(OIIO::TypeDesc::FLOAT, image.pixels.data());
+  }
+  ok = out->close() && ok;
+  return ok ? std::string() : out->geterror();
+}
+
+}  // namespace
+
 void write_image(const std::string& path, const Image& image, float exposure) {
   check_output_path(path);
   const std::string ext = extension_of(path);
@@ -53,33 +95,18 @@ void write_image(const std::string& path, const Image& image, float exposure) {
   const fs::path target(path);
   const fs::path tmp = target.parent_path() /
       ("." + target.stem().string() + ".tmp" + std::to_string(getpid()) + "_" + std::to_string(counter++) + ext);
-  auto out = OIIO::ImageOutput::create(tmp.string());
-  if (!out) throw InputError(path + ": cannot create an image writer: " + OIIO::geterror());
-  const bool ldr = ext == ".png";
-  OIIO::ImageSpec spec(image.width, image.height, 3, ldr ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::FLOAT);
-  if (ldr) spec.attribute("oiio:ColorSpace", "sRGB");
-  else spec.attribute("oiio:ColorSpace", "Linear");
-  bool ok = out->open(tmp.string(), spec);
-  if (ok) {
-    if (ldr) {
-      const float scale = std::exp2(exposure);
-      std::vector<unsigned char> bytes(image.pixels.size() * 3);
-      for (size_t i = 0; i < image.pixels.size(); ++i) {
-        for (int c = 0; c < 3; ++c) {
-          bytes[3 * i + c] = static_cast<unsigned char>(std::lround(255.0f * linear_to_srgb(image.pixels[i][c] * scale)));
-        }
-      }
-      ok = out->write_image(OIIO::TypeDesc::UINT8, bytes.data());
-    } else {
-      ok = out->write_image(OIIO::TypeDesc::FLOAT, image.pixels.data());
-    }
-    ok = out->close() && ok;
+  std::string error;
+  if (ext == ".pfm") {
+    // OpenImageIO 2.4 reads PFM but has no writer: the format is three header lines and
+    // little-endian float rows, bottom row first.
+    if (!write_pfm(tmp.string(), image)) error = std::strerror(errno);
+  } else {
+    error = write_with_oiio(tmp.string(), image, exposure, ext == ".png");
   }
-  if (!ok) {
-    const std::string err = out->geterror();
+  if (!error.empty()) {
     std::error_code ec;
     fs::remove(tmp, ec);
-    throw InputError(path + ": cannot write image: " + err);
+    throw InputError(path + ": cannot write image: " + error);
   }
   std::error_code ec;
   fs::rename(tmp, target, ec);

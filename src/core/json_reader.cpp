@@ -1,6 +1,7 @@
 // JSON parsing with file:line:column syntax errors and pointer-named semantic errors.
 #include "core/json_reader.h"
 #include <algorithm>
+#include <cctype>
 #include <sstream>
 
 namespace caustica {
@@ -10,7 +11,19 @@ nlohmann::json parse_json_text(const std::string& text, const std::string& file)
     return nlohmann::json::parse(text, nullptr, true, /*ignore_comments=*/true);
   } catch (const nlohmann::json::parse_error& e) {
     // e.byte is the 1-based offset of the character where parsing stopped.
-    const size_t stop = std::min<size_t>(e.byte > 0 ? e.byte - 1 : 0, text.size());
+    // e.byte is just past the token that failed; step back to the token's first character.
+    size_t stop = std::min<size_t>(e.byte > 0 ? e.byte - 1 : 0, text.size());
+    if (stop < text.size() && stop > 0) {
+      if (text[stop] == '"') {
+        const size_t open = text.rfind('"', stop - 1);
+        if (open != std::string::npos && text.find('\n', open) >= stop) stop = open;
+      } else {
+        auto token_char = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '-' || c == '+'; };
+        if (token_char(text[stop])) {
+          while (stop > 0 && token_char(text[stop - 1])) --stop;
+        }
+      }
+    }
     size_t line = 1, line_start = 0;
     for (size_t i = 0; i < stop; ++i) {
       if (text[i] == '\n') {
@@ -40,11 +53,25 @@ nlohmann::json parse_json_text(const std::string& text, const std::string& file)
     const size_t q1 = what.find('\''), q2 = what.rfind('\'');
     std::string where = file;
     if (q1 != std::string::npos && q2 > q1) {
-      const size_t at = text.find(what.substr(q1 + 1, q2 - q1 - 1));
+      const std::string token = what.substr(q1 + 1, q2 - q1 - 1);
+      // The first occurrence outside a string literal.
+      bool in_string = false;
+      size_t at = std::string::npos;
+      for (size_t i = 0; i < text.size(); ++i) {
+        if (in_string) {
+          if (text[i] == '\\') ++i;
+          else if (text[i] == '"') in_string = false;
+        } else if (text[i] == '"') {
+          in_string = true;
+        } else if (text.compare(i, token.size(), token) == 0) {
+          at = i;
+          break;
+        }
+      }
       if (at != std::string::npos) {
         const size_t line = 1 + std::count(text.begin(), text.begin() + at, '\n');
-        const size_t line_start = text.rfind('\n', at == 0 ? 0 : at - 1);
-        const size_t column = line_start == std::string::npos || at == 0 ? at + 1 : at - line_start;
+        const size_t line_start = at == 0 ? std::string::npos : text.rfind('\n', at - 1);
+        const size_t column = line_start == std::string::npos ? at + 1 : at - line_start;
         where += ":" + std::to_string(line) + ":" + std::to_string(column);
       }
     }

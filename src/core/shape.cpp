@@ -70,11 +70,15 @@ bool intersect_triangle(const Ray& ray, const Vec3& p0, const Vec3& p1, const Ve
   if (det == 0.0f || !std::isfinite(det)) return false;
   const float inv_det = 1.0f / det;
   const Vec3 tvec = ray.origin - p0;
+  // Barycentric tests widened by a few ulps: neighbouring triangles then overlap by a hair
+  // instead of leaving cracks along shared edges that rounding would open (closed glass
+  // meshes must not leak). A double hit on an edge is harmless for the closest hit.
+  constexpr float kEdgeSlack = 1e-6f;
   u = glm::dot(tvec, pvec) * inv_det;
-  if (u < 0.0f || u > 1.0f) return false;
+  if (u < -kEdgeSlack || u > 1.0f + kEdgeSlack) return false;
   const Vec3 qvec = glm::cross(tvec, e1);
   v = glm::dot(ray.dir, qvec) * inv_det;
-  if (v < 0.0f || u + v > 1.0f) return false;
+  if (v < -kEdgeSlack || u + v > 1.0f + kEdgeSlack) return false;
   t = glm::dot(e2, qvec) * inv_det;
   return t > 0.0f && t < tmax;
 }
