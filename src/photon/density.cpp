@@ -75,12 +75,16 @@ void IrradianceCache::build(const PhotonMap& global, size_t stride, const Estima
 
 bool IrradianceCache::lookup(const Vec3& p, const Vec3& n_side, float max_radius, Color& E,
                              std::vector<Neighbour>& scratch) const {
-  points_.knn(p, 8, max_radius, scratch);
-  for (const Neighbour& nb : scratch) {
-    if (normals_agree(points_[nb.index].surface_normal(), n_side)) {
-      E = points_.power(nb.index);
-      return true;
+  // The nearest point nearly always lies on the same surface; look further only when not.
+  for (size_t k : {size_t(1), size_t(8)}) {
+    points_.knn(p, k, max_radius, scratch);
+    for (const Neighbour& nb : scratch) {
+      if (normals_agree(points_[nb.index].surface_normal(), n_side)) {
+        E = points_.power(nb.index);
+        return true;
+      }
     }
+    if (scratch.size() < k) break;  // nothing more within max_radius
   }
   return false;
 }
