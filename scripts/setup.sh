@@ -2,7 +2,7 @@
 # Installs the Debian 12 packages Caustica builds with; does nothing when they are all present.
 set -euo pipefail
 packages=(build-essential cmake pkg-config libglm-dev libnanoflann-dev libopenimageio-dev
-          libtbb-dev catch2 nlohmann-json3-dev libcli11-dev libtinyobjloader-dev)
+          libtbb-dev catch2 nlohmann-json3-dev libcli11-dev libtinyobjloader-dev fonts-dejavu-core)
 packages+=("$@")
 missing=()
 for p in "${packages[@]}"; do

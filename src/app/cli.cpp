@@ -10,6 +10,7 @@
 #include <optional>
 #include <tbb/global_control.h>
 #include <tbb/info.h>
+#include "app/compare_command.h"
 #include "app/render_command.h"
 #include "core/json_reader.h"
 #include "trace/integrator.h"
@@ -40,6 +41,7 @@ int run_cli(int argc, char** argv) {
   render->add_option("--max-depth", args.max_depth, "Maximum path length")->check(CLI::Range(1, 1024));
   render->add_option("--exposure", args.exposure, "Exposure in stops for PNG output")->check(CLI::Range(-30.0, 30.0));
   render->add_flag("-q,--quiet", args.quiet, "No progress bar and no statistics");
+  render->add_option("--reference", args.reference, "Print error figures against this reference image at the end");
 
   // Photon-mapping settings (integrators photon and photon-direct); each maps to a settings key.
   struct PhotonFlag {
@@ -68,6 +70,13 @@ int run_cli(int argc, char** argv) {
     photon_options.emplace_back(&f, o);
   }
 
+  CompareArgs cargs;
+  CLI::App* compare = app.add_subcommand("compare", "Error figures of an image against a reference");
+  compare->add_option("image", cargs.image, "Image to judge (.exr, .hdr, .pfm, .png)")->required();
+  compare->add_option("reference", cargs.reference, "Reference image")->required();
+  compare->add_option("--diff", cargs.diff, "Write a false-colour map of the relative error (with a colour bar)");
+  compare->add_flag("--json", cargs.json, "Print the figures as one JSON object");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -85,6 +94,7 @@ int run_cli(int argc, char** argv) {
   }
   try {
     if (render->parsed()) return run_render(args);
+    if (compare->parsed()) return run_compare(cargs);
   } catch (const InputError& e) {
     std::cerr << "error: " << e.what() << "\n";
     return 1;

@@ -9,6 +9,7 @@
 #include <sstream>
 #include <tbb/global_control.h>
 #include <tbb/info.h>
+#include "app/compare_command.h"
 #include "core/json_reader.h"
 #include "core/scene_loader.h"
 #include "trace/progress.h"
@@ -39,6 +40,15 @@ int run_render(const RenderArgs& args) {
       ? args.output
       : std::filesystem::path(args.scene).stem().string() + ".png";
   check_output_path(output);
+  Image reference;
+  if (!args.reference.empty()) {
+    reference = read_image(args.reference);
+    if (reference.width != rs.width || reference.height != rs.height) {
+      throw InputError(args.reference + ": reference is " + std::to_string(reference.width) + "x" +
+                       std::to_string(reference.height) + ", the render " + std::to_string(rs.width) + "x" +
+                       std::to_string(rs.height));
+    }
+  }
 
   std::string type = scene.integrator_type;
   JsonSource settings = scene.integrator_settings;
@@ -103,6 +113,11 @@ int run_render(const RenderArgs& args) {
       << "\n";
     s << "bad samples (NaN/Inf/negative, dropped): " << stats.bad_samples << "\n";
     std::cout << s.str();
+  }
+  if (!args.reference.empty()) {
+    const ErrorMetrics m = compare_images(image, reference, output, args.reference);
+    if (!args.quiet) std::cout << "error against " << args.reference << ":\n";
+    std::cout << format_metrics(m, false);
   }
   return stats.interrupted ? 130 : 0;
 }

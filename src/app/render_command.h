@@ -9,7 +9,7 @@
 namespace caustica {
 
 struct RenderArgs {
-  std::string scene, output, integrator;
+  std::string scene, output, integrator, reference;
   std::optional<int> spp, threads, width, height, max_depth;
   std::optional<uint64_t> seed;
   std::optional<double> time;

@@ -1,6 +1,7 @@
 // The caustica executable end to end: renders, overrides, and bad input that must fail cleanly.
 #include <catch2/catch.hpp>
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include "core/image.h"
 #include "support/run.h"
 
@@ -121,4 +122,29 @@ TEST_CASE("cli: a missing scene file and a folder as scene", "[app]") {
   r = run_caustica("render . -o out.png", dir);
   CHECK(r.exit_code == 1);
   CHECK(r.err.find("is a directory") != std::string::npos);
+}
+
+TEST_CASE("cli: compare prints the figures, as JSON too, and writes an error map", "[app]") {
+  test::TempDir dir;
+  Image ref(8, 8), img(8, 8);
+  for (Color& c : ref.pixels) c = Color(0.5f);
+  for (Color& c : img.pixels) c = Color(0.6f);
+  write_image(dir.file("ref.exr"), ref);
+  write_image(dir.file("img.exr"), img);
+  auto r = run_caustica("compare img.exr ref.exr --diff diff.png", dir);
+  REQUIRE(r.exit_code == 0);
+  CHECK(r.out.find("rmse: 0.1") != std::string::npos);
+  CHECK(fs::exists(dir.file("diff.png")));
+  r = run_caustica("compare img.exr ref.exr --json", dir);
+  REQUIRE(r.exit_code == 0);
+  const auto j = nlohmann::json::parse(r.out);
+  CHECK(j["rmse"].get<double>() == Approx(0.1).epsilon(1e-5));
+  CHECK(j["mean_reference"][0].get<double>() == Approx(0.5));
+  write_image(dir.file("small.exr"), Image(4, 8));
+  r = run_caustica("compare small.exr ref.exr", dir);
+  CHECK(r.exit_code == 1);
+  CHECK(r.err.find("small.exr is 4x8, ref.exr is 8x8") != std::string::npos);
+  r = run_caustica("compare missing.exr ref.exr", dir);
+  CHECK(r.exit_code == 1);
+  CHECK(r.err.find("missing.exr") != std::string::npos);
 }

@@ -1,0 +1,28 @@
+// Error metrics between an image and a reference, and false-colour error maps.
+#pragma once
+#include <string>
+#include "core/image.h"
+
+namespace caustica {
+
+struct ErrorMetrics {
+  double rmse = 0;    // sqrt(mean((a - b)^2)) over pixels and channels
+  double relmse = 0;  // mean((a - b)^2 / (b^2 + 0.01))
+  double mae = 0;     // mean |a - b|
+  double psnr = 0;    // 20 log10(1 / rmse), peak 1 (infinite for identical images)
+  double max_error = 0;
+  Color mean_image{0.0f}, mean_reference{0.0f};
+};
+
+// Throws InputError when the sizes differ (`image_name`, `reference_name` name them).
+ErrorMetrics compare_images(const Image& image, const Image& reference, const std::string& image_name = "image",
+                            const std::string& reference_name = "reference");
+
+// Per-pixel relative squared error (averaged over channels) in false colour (a perceptual
+// dark-blue-to-yellow ramp on a log scale from 1e-4 to 1), with a labelled colour bar below.
+Image error_map(const Image& image, const Image& reference);
+
+// The false-colour ramp used by error maps and heat maps: t in [0, 1].
+Color false_colour(float t);
+
+}  // namespace caustica
