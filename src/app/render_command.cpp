@@ -24,21 +24,13 @@ extern "C" void on_sigint(int) { g_interrupted.store(true); }
 }  // namespace
 
 int run_render(const RenderArgs& args) {
-  LoadedScene loaded = load_scene(args.scene);
+  LoadedScene loaded = load_scene_with(args.common);
   Scene& scene = *loaded.scene;
-  for (const std::string& w : loaded.warnings) std::cerr << "warning: " << w << "\n";
-
-  RenderSettings& rs = scene.render;
-  if (args.width) rs.width = *args.width;
-  if (args.height) rs.height = *args.height;
-  if (args.spp) rs.spp = *args.spp;
-  if (args.seed) rs.seed = *args.seed;
-  if (args.max_depth) rs.max_depth = *args.max_depth;
-  scene.camera.set_resolution(rs.width, rs.height);
+  const RenderSettings& rs = scene.render;
 
   const std::string output = !args.output.empty()
       ? args.output
-      : std::filesystem::path(args.scene).stem().string() + ".png";
+      : std::filesystem::path(args.common.scene).stem().string() + ".png";
   check_output_path(output);
   Image reference;
   if (!args.reference.empty()) {
@@ -50,34 +42,17 @@ int run_render(const RenderArgs& args) {
     }
   }
 
-  std::string type = scene.integrator_type;
-  JsonSource settings = scene.integrator_settings;
-  if (!args.integrator.empty() && args.integrator != type) {
-    // The scene's settings were written for another integrator: use the defaults.
-    if (!settings.value.empty() && !args.quiet) {
-      std::cerr << "note: --integrator " << args.integrator << " replaces the scene's \"" << type
-                << "\"; its settings in " << settings.pointer << " are not used\n";
-    }
-    type = args.integrator;
-    settings.value = nlohmann::json::object();
+  std::unique_ptr<Integrator> integrator = integrator_for(scene, args.integrator, args.common);
+  if (args.aov && integrator->name().rfind("photon", 0) != 0) {
+    throw InputError("--aov needs a photon integrator (photon or photon-direct), not \"" + integrator->name() + "\"");
   }
-  for (const auto& kv : args.integrator_overrides) {
-    std::string flag = "--" + kv.first;
-    std::replace(flag.begin(), flag.end(), '_', '-');
-    const bool gather_only = kv.first == "gather_rays" || kv.first == "direct_samples" || kv.first == "irradiance_stride";
-    if ((type != "photon" && type != "photon-direct") || (type == "photon-direct" && gather_only)) {
-      throw InputError(flag + " does not apply to integrator \"" + type + "\"");
-    }
-    settings.value[kv.first] = kv.second;
-  }
-  std::unique_ptr<Integrator> integrator = create_integrator(type, settings, rs);
 
-  const int threads = args.threads ? *args.threads : tbb::info::default_concurrency();
+  const int threads = thread_count(args.common);
   tbb::global_control control(tbb::global_control::max_allowed_parallelism, size_t(threads));
 
   g_interrupted = false;
   auto previous = std::signal(SIGINT, on_sigint);
-  PreprocessContext pre{rs.seed, args.quiet};
+  PreprocessContext pre{rs.seed, args.common.quiet, &g_interrupted};
   const auto t0 = std::chrono::steady_clock::now();
   integrator->preprocess(scene, pre);
   const double preprocess_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -86,18 +61,32 @@ int run_render(const RenderArgs& args) {
   options.spp = rs.spp;
   options.time_limit = args.time ? *args.time : 0.0;
   options.seed = rs.seed;
-  options.quiet = args.quiet;
+  options.quiet = args.common.quiet;
   options.cancel = &g_interrupted;
+  options.aov = args.aov;
   RenderStats stats;
-  Image image = g_interrupted ? Image(rs.width, rs.height) : render_image(scene, *integrator, options, stats);
+  std::vector<Image> aovs;
+  Image image = g_interrupted ? Image(rs.width, rs.height) : render_image(scene, *integrator, options, stats, &aovs);
   std::signal(SIGINT, previous);
   if (g_interrupted) stats.interrupted = true;
+  if (stats.interrupted && stats.passes == 0) {
+    std::cerr << "interrupted before the first pass was complete: no image written\n";
+    return 130;
+  }
   write_image(output, image, args.exposure);
+  if (args.aov && aovs.size() == 2) {
+    // Beside the main output: photon counts (R global, G caustic) and estimate radii, linear EXR.
+    const std::filesystem::path out(output);
+    const std::string stem = (out.parent_path() / out.stem()).string();
+    write_image(stem + ".photons.exr", aovs[0]);
+    write_image(stem + ".radius.exr", aovs[1]);
+    if (!args.common.quiet) std::cout << "aov: " << stem << ".photons.exr, " << stem << ".radius.exr\n";
+  }
 
-  if (!args.quiet) {
+  if (!args.common.quiet) {
     std::ostringstream s;
     s << std::fixed << std::setprecision(3);
-    s << "scene: " << args.scene << " (" << loaded.triangle_count << " triangles, " << loaded.sphere_count
+    s << "scene: " << args.common.scene << " (" << loaded.triangle_count << " triangles, " << loaded.sphere_count
       << " spheres, " << scene.lights.size() << " lights)\n";
     s << "integrator: " << integrator->name() << "\n" << integrator->describe();
     s << "image: " << output << " (" << rs.width << "x" << rs.height << ")\n";
@@ -116,7 +105,7 @@ int run_render(const RenderArgs& args) {
   }
   if (!args.reference.empty()) {
     const ErrorMetrics m = compare_images(image, reference, output, args.reference);
-    if (!args.quiet) std::cout << "error against " << args.reference << ":\n";
+    if (!args.common.quiet) std::cout << "error against " << args.reference << ":\n";
     std::cout << format_metrics(m, false);
   }
   return stats.interrupted ? 130 : 0;

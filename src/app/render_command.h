@@ -4,19 +4,16 @@
 #include <string>
 #include <utility>
 #include <vector>
-#include <nlohmann/json.hpp>
+#include "app/scene_setup.h"
 
 namespace caustica {
 
 struct RenderArgs {
-  std::string scene, output, integrator, reference;
-  std::optional<int> spp, threads, width, height, max_depth;
-  std::optional<uint64_t> seed;
+  SceneOptions common;
+  std::string output, integrator, reference;
   std::optional<double> time;
-  // Integrator settings from flags such as --photons, by settings key (applied over the scene's).
-  std::vector<std::pair<std::string, nlohmann::json>> integrator_overrides;
   float exposure = 0.0f;
-  bool quiet = false;
+  bool aov = false;
 };
 
 int run_render(const RenderArgs& args);

@@ -6,7 +6,47 @@
 
 namespace caustica {
 
+namespace {
+
+// nlohmann::json parses iteratively, but copying, comparing and dumping a value recurse once per
+// level: ~100k nested '[' overflow the stack (ASan: stack-overflow copying the integrator block).
+// Scene files need a few levels, so a scan before parsing rejects anything deeper than kMaxDepth,
+// skipping strings and comments the way the parser does.
+constexpr int kMaxDepth = 512;
+
+void check_nesting_depth(const std::string& text, const std::string& file) {
+  int depth = 0;
+  for (size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (c == '"') {
+      for (++i; i < text.size() && text[i] != '"'; ++i) {
+        if (text[i] == '\\') ++i;
+      }
+    } else if (c == '/' && i + 1 < text.size() && text[i + 1] == '/') {
+      i = text.find('\n', i);
+      if (i == std::string::npos) return;
+    } else if (c == '/' && i + 1 < text.size() && text[i + 1] == '*') {
+      i = text.find("*/", i + 2);
+      if (i == std::string::npos) return;
+      ++i;
+    } else if (c == '[' || c == '{') {
+      if (++depth > kMaxDepth) {
+        const size_t line = 1 + std::count(text.begin(), text.begin() + i, '\n');
+        const size_t line_start = i == 0 ? std::string::npos : text.rfind('\n', i - 1);
+        const size_t column = line_start == std::string::npos ? i + 1 : i - line_start;
+        throw InputError(file + ":" + std::to_string(line) + ":" + std::to_string(column) + ": nesting deeper than " +
+                         std::to_string(kMaxDepth) + " levels");
+      }
+    } else if ((c == ']' || c == '}') && depth > 0) {
+      --depth;
+    }
+  }
+}
+
+}  // namespace
+
 nlohmann::json parse_json_text(const std::string& text, const std::string& file) {
+  check_nesting_depth(text, file);
   try {
     return nlohmann::json::parse(text, nullptr, true, /*ignore_comments=*/true);
   } catch (const nlohmann::json::parse_error& e) {

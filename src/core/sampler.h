@@ -8,6 +8,10 @@ namespace caustica {
 struct Sampler {
   Rng rng;
   uint64_t rays = 0;
+  // Extra per-sample outputs (AOVs) an integrator may fill: kAovCount floats, or null.
+  // The photon integrators write [global photons, caustic photons, global radius, caustic radius].
+  static constexpr int kAovCount = 4;
+  float* aov = nullptr;
   Sampler() = default;
   explicit Sampler(uint64_t seed) : rng(seed) {}
   float next1d() { return rng.next_float(); }

@@ -169,6 +169,7 @@ struct Loader {
     const uint32_t mat = material_ref(j, p);
     const bool flip = j.contains("flip_normal") && r.boolean(j["flip_normal"], child(p, "flip_normal"));
     if (shapes.empty()) {
+      if (scene().materials[mat]->is_emissive()) r.fail(p, "emissive object has zero area (all its triangles are degenerate)");
       r.warn(p, "object has no usable triangles and is left out", out.warnings);
       return;
     }
@@ -313,6 +314,8 @@ LoadedScene load_scene(const std::string& path) {
   std::error_code ec;
   if (!fs::exists(path, ec)) throw InputError(path + ": scene file not found");
   if (fs::is_directory(path, ec)) throw InputError(path + ": is a directory, not a scene file");
+  // A FIFO or device would block or never end: only regular files are read.
+  if (!fs::is_regular_file(path, ec)) throw InputError(path + ": not a regular file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path + ": cannot open scene file for reading");
   std::ostringstream ss;

@@ -143,6 +143,7 @@ std::vector<Photon> run_map(const Scene& scene, const PhotonPassSettings& s, boo
     std::vector<std::vector<uint32_t>> chunk_counts(chunks_in_round);  // stored per emitted photon
     const uint64_t first = emitted;
     tbb::parallel_for(uint64_t(0), chunks_in_round, [&](uint64_t c) {
+      if (s.cancel && s.cancel->load(std::memory_order_relaxed)) return;
       auto& out = chunk_out[c];
       auto& counts = chunk_counts[c];
       counts.reserve(kChunk);
@@ -168,6 +169,7 @@ std::vector<Photon> run_map(const Scene& scene, const PhotonPassSettings& s, boo
         }
       }
     }
+    if (s.cancel && s.cancel->load()) break;
     // Size the next round from the storage rate seen so far (deterministic).
     const double rate = emitted > 0 ? double(pending.size()) / double(emitted) : 0.0;
     const double need = rate > 0 ? double(wanted - std::min(wanted, pending.size())) / rate : double(cap);

@@ -1,5 +1,6 @@
 // The integrator interface and the factory table that creates integrators by name.
 #pragma once
+#include <atomic>
 #include <memory>
 #include <string>
 #include <vector>
@@ -12,6 +13,7 @@ namespace caustica {
 struct PreprocessContext {
   uint64_t seed = 0;
   bool quiet = false;
+  const std::atomic<bool>* cancel = nullptr;  // set (e.g. by SIGINT) to stop early
 };
 
 class Integrator {

@@ -2,6 +2,8 @@
 // from the caustic map, indirect light by final gathering into the global map (Jensen 1996).
 #include "trace/photon_integrator.h"
 #include <chrono>
+#include <iomanip>
+#include <unistd.h>
 #include <iostream>
 #include <sstream>
 #include "photon/photon_tracer.h"
@@ -44,6 +46,21 @@ PhotonSettings PhotonSettings::read(const JsonSource& src, const RenderSettings&
   return s;
 }
 
+// Refuses up front a photon count whose maps would not fit in this machine's memory.
+static void check_memory(size_t photons) {
+  // While tracing: a pending record (position, float flux, directions) and the final record;
+  // then the kd-tree index and the precomputed-irradiance points.
+  const double bytes_per_photon = 52.0 + sizeof(Photon) + 8.0 + 0.25 * (sizeof(Photon) + 8.0);
+  const double need = double(photons) * bytes_per_photon;
+  const double have = double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGE_SIZE));
+  if (have > 0 && need > 0.8 * have) {
+    std::ostringstream m;
+    m << std::fixed << std::setprecision(1) << photons << " photons would need about " << need / (1 << 30)
+      << " GiB of memory; this machine has " << have / (1 << 30) << " GiB (use fewer photons)";
+    throw InputError(m.str());
+  }
+}
+
 PhotonIntegrator::PhotonIntegrator(const JsonSource& settings, const RenderSettings& render, bool final_gather)
     : final_gather_(final_gather), settings_(PhotonSettings::read(settings, render, final_gather)) {}
 
@@ -53,6 +70,8 @@ void PhotonIntegrator::preprocess(const Scene& scene, const PreprocessContext& c
   pass.caustic_photons = final_gather_ ? settings_.caustic_photons : 0;
   pass.max_depth = settings_.max_depth;
   pass.seed = context.seed;
+  pass.cancel = context.cancel;
+  check_memory(pass.global_photons + pass.caustic_photons);
   PhotonPassResult r = trace_photons(scene, pass);
   stats_.photon_seconds = r.seconds;
   stats_.global_emitted = r.global_emitted;
@@ -82,7 +101,8 @@ void PhotonIntegrator::preprocess(const Scene& scene, const PreprocessContext& c
       ? settings_.caustic_radius
       : std::sqrt(float(settings_.caustic_k) * area / (kPi * float(std::max<size_t>(n_caustic, 1))));
 
-  if (final_gather_ && settings_.irradiance_stride > 0 && !global_.empty()) {
+  const bool cancelled = context.cancel && context.cancel->load();
+  if (final_gather_ && settings_.irradiance_stride > 0 && !global_.empty() && !cancelled) {
     t0 = std::chrono::steady_clock::now();
     irradiance_.build(global_, size_t(settings_.irradiance_stride), global_est_);
     stats_.irradiance_seconds = seconds_since(t0);
@@ -135,6 +155,17 @@ Color PhotonIntegrator::final_gather(const Scene& scene, const SurfaceHit& hit, 
   return sum / float(n);
 }
 
+void PhotonIntegrator::record_aov(const SurfaceHit& hit, const Vec3& wo, float* aov,
+                                  std::vector<Neighbour>& scratch) const {
+  EstimateInfo g, c;
+  radiance_estimate(global_, hit.p, hit.n, wo, *hit.material, global_est_, scratch, &g);
+  if (!caustic_.empty()) radiance_estimate(caustic_, hit.p, hit.n, wo, *hit.material, caustic_est_, scratch, &c);
+  aov[0] = float(g.photons);
+  aov[1] = float(c.photons);
+  aov[2] = g.radius;
+  aov[3] = c.radius;
+}
+
 Color PhotonIntegrator::Li(const Ray& camera_ray, const Scene& scene, Sampler& sampler) const {
   std::vector<Neighbour>& scratch = tls_scratch;
   Color L(0.0f), beta(1.0f);
@@ -148,6 +179,7 @@ Color PhotonIntegrator::Li(const Ray& camera_ray, const Scene& scene, Sampler& s
     const Material& m = *hit.material;
     L += beta * m.emitted(wo_l);  // seen directly or through mirrors and glass only
     if (m.is_diffuse()) {
+      if (sampler.aov) record_aov(hit, wo, sampler.aov, scratch);
       if (!final_gather_) return L + beta * radiance_estimate(global_, hit.p, hit.n, wo, m, global_est_, scratch);
       Color direct(0.0f);
       for (int i = 0; i < settings_.direct_samples; ++i) direct += estimate_direct(scene, hit, wo, sampler);

@@ -47,6 +47,7 @@ class PhotonIntegrator final : public Integrator {
  private:
   Color final_gather(const Scene& scene, const SurfaceHit& hit, const Vec3& wo, Sampler& sampler,
                      std::vector<Neighbour>& scratch) const;
+  void record_aov(const SurfaceHit& hit, const Vec3& wo, float* aov, std::vector<Neighbour>& scratch) const;
   Color indirect_at(const SurfaceHit& hit, const Vec3& wo, std::vector<Neighbour>& scratch) const;
 
   bool final_gather_;

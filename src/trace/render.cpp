@@ -9,7 +9,7 @@
 namespace caustica {
 
 Image render_image(const Scene& scene, const Integrator& integrator, const RenderOptions& options,
-                   RenderStats& stats) {
+                   RenderStats& stats, std::vector<Image>* aovs) {
   const int w = scene.camera.width(), h = scene.camera.height();
   const int ts = options.tile_size;
   const int tiles_x = (w + ts - 1) / ts, tiles_y = (h + ts - 1) / ts;
@@ -17,6 +17,9 @@ Image render_image(const Scene& scene, const Integrator& integrator, const Rende
   const bool timed = options.time_limit > 0;
   std::vector<glm::dvec3> sum(size_t(w) * h, glm::dvec3(0.0));
   Image pass_image(w, h);
+  const bool want_aov = options.aov && aovs;
+  constexpr int kA = Sampler::kAovCount;
+  std::vector<float> aov_pass(want_aov ? size_t(w) * h * kA : 0), aov_sum(aov_pass.size(), 0.0f);
   std::atomic<uint64_t> rays{0}, bad{0};
   std::atomic<int> tiles_done{0};
   const auto start = std::chrono::steady_clock::now();
@@ -40,6 +43,10 @@ Image render_image(const Scene& scene, const Integrator& integrator, const Rende
           for (int x = x0; x < std::min(x0 + ts, w); ++x) {
             const uint64_t pixel = uint64_t(y) * w + x;
             Sampler sampler(hash_seed(pixel, uint64_t(pass), options.seed));
+            if (want_aov) {
+              sampler.aov = &aov_pass[pixel * kA];
+              std::fill(sampler.aov, sampler.aov + kA, 0.0f);
+            }
             const Vec2 jitter = sampler.next2d();
             const Ray ray = scene.camera.generate_ray(x + jitter.x, y + jitter.y);
             Color L = integrator.Li(ray, scene, sampler);
@@ -62,6 +69,7 @@ Image render_image(const Scene& scene, const Integrator& integrator, const Rende
       break;
     }
     for (size_t i = 0; i < sum.size(); ++i) sum[i] += glm::dvec3(pass_image.pixels[i]);
+    for (size_t i = 0; i < aov_sum.size(); ++i) aov_sum[i] += aov_pass[i];
     stats.passes = pass + 1;
     if (timed) progress.set(std::min(elapsed(), options.time_limit));
     if (options.on_pass) {
@@ -78,6 +86,14 @@ Image render_image(const Scene& scene, const Integrator& integrator, const Rende
   Image image(w, h);
   if (stats.passes > 0) {
     for (size_t i = 0; i < sum.size(); ++i) image.pixels[i] = Color(sum[i] / double(stats.passes));
+  }
+  if (want_aov) {
+    aovs->assign(2, Image(w, h));
+    const float inv = stats.passes > 0 ? 1.0f / float(stats.passes) : 0.0f;
+    for (size_t i = 0; i < size_t(w) * h; ++i) {
+      (*aovs)[0].pixels[i] = Color(aov_sum[i * kA], aov_sum[i * kA + 1], 0.0f) * inv;
+      (*aovs)[1].pixels[i] = Color(aov_sum[i * kA + 2], aov_sum[i * kA + 3], 0.0f) * inv;
+    }
   }
   return image;
 }

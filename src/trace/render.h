@@ -13,7 +13,8 @@ struct RenderOptions {
   uint64_t seed = 0;
   bool quiet = false;
   int tile_size = 16;
-  const std::atomic<bool>* cancel = nullptr;  // set (e.g. by SIGINT) to stop after this tile
+  const std::atomic<bool>* cancel = nullptr;
+  bool aov = false;  // collect the integrator's per-sample AOVs (Sampler::aov)  // set (e.g. by SIGINT) to stop after this tile
   // Called after each completed pass with the running mean; may be null.
   std::function<void(int passes, double seconds, const Image& mean)> on_pass;
 };
@@ -28,7 +29,9 @@ struct RenderStats {
 };
 
 // Deterministic: the image for a scene, integrator and seed is the same for any thread count.
+// With options.aov, `aovs` receives the per-pixel mean of the AOVs: two images, the first
+// holding Sampler::aov[0..1] in red and green, the second aov[2..3].
 Image render_image(const Scene& scene, const Integrator& integrator, const RenderOptions& options,
-                   RenderStats& stats);
+                   RenderStats& stats, std::vector<Image>* aovs = nullptr);
 
 }  // namespace caustica

@@ -1,6 +1,9 @@
 // The caustica executable end to end: renders, overrides, and bad input that must fail cleanly.
 #include <catch2/catch.hpp>
+#include <chrono>
 #include <filesystem>
+#include <sys/stat.h>
+#include <unistd.h>
 #include <nlohmann/json.hpp>
 #include "core/image.h"
 #include "support/run.h"
@@ -93,6 +96,19 @@ TEST_CASE("cli: bad input exits non-zero with a located message and writes no im
       {"wrong type", replaced("\"fov\": 50", "\"fov\": \"wide\""), "", "/camera/fov: expected a number"},
       {"infinite number", replaced("\"fov\": 50", "\"fov\": 1e999"), "", "bad.json:2:"},
       {"binary garbage", std::string("\x89PNG\r\n\x1a\n\x00\x01\xff", 11), "", "bad.json:1:1:"},
+      {"truncated JSON", good.substr(0, good.size() / 2), "", "bad.json:"},
+      {"NaN literal", replaced("\"fov\": 50", "\"fov\": NaN"), "", "bad.json:2:"},
+      {"negative radius", replaced("{\"type\": \"quad\", \"origin\": [-2, 0, -2], \"edge1\": [0, 0, 4], \"edge2\": [4, 0, 0],",
+                                   "{\"type\": \"sphere\", \"center\": [0, 0, 0], \"radius\": -1,"),
+       "", "/objects/0/radius: radius must be positive"},
+      {"zero-area light", replaced("{\"type\": \"quad\", \"origin\": [-0.5, 2, -0.5], \"edge1\": [1, 0, 0], \"edge2\": [0, 0, 1],",
+                                   "{\"type\": \"triangle\", \"vertices\": [[0, 2, 0], [1, 2, 0], [2, 2, 0]],"),
+       "", "/objects/1: emissive object has zero area"},
+      {"IOR zero", replaced("\"white\": {\"type\": \"diffuse\", \"albedo\": [0.7, 0.7, 0.7]}",
+                            "\"white\": {\"type\": \"glass\", \"ior\": 0}"),
+       "", "/materials/white/ior: index of refraction must be positive"},
+      {"photons too many for memory", good, "--integrator photon --photons 2000000000", "GiB of memory"},
+      {"--aov without a photon integrator", good, "--aov", "--aov needs a photon integrator"},
       {"negative --spp", good, "--spp -1", "--spp"},
       {"--threads 0", good, "--threads 0", "--threads"},
       {"unknown integrator", good, "--integrator phton", "unknown integrator \"phton\" (known: "},
@@ -147,4 +163,56 @@ TEST_CASE("cli: compare prints the figures, as JSON too, and writes an error map
   r = run_caustica("compare missing.exr ref.exr", dir);
   CHECK(r.exit_code == 1);
   CHECK(r.err.find("missing.exr") != std::string::npos);
+}
+
+TEST_CASE("cli: warnings (degenerate triangle, albedo above 1) still render", "[app]") {
+  test::TempDir dir;
+  std::string text(kGoodScene);
+  text.replace(text.find("\"albedo\": [0.7, 0.7, 0.7]"), 25, "\"albedo\": [1.2, 0.7, 0.7]");
+  text.replace(text.find("\n  ]\n}"), 4,
+               ", {\"type\": \"triangle\", \"vertices\": [[0, 0, 0], [1, 1, 1], [2, 2, 2]], \"material\": \"white\"}]");
+  dir.write("warn.json", text);
+  const auto r = run_caustica("render warn.json -o out.png -q", dir);
+  INFO(r.err);
+  CHECK(r.exit_code == 0);
+  CHECK(r.err.find("warn.json: /objects/2: degenerate triangle (zero area) left out") != std::string::npos);
+  CHECK(r.err.find("/materials/white/albedo: albedo above 1") != std::string::npos);
+  CHECK(fs::exists(dir.file("out.png")));
+}
+
+TEST_CASE("cli: an unreadable scene file is a clear error", "[app]") {
+  test::TempDir dir;
+  const std::string path = dir.write("locked.json", kGoodScene);
+  fs::permissions(path, fs::perms::none);
+  if (geteuid() == 0) {
+    WARN("running as root: file permissions do not apply, unreadable-file case checked through a FIFO instead");
+    fs::remove(path);
+    REQUIRE(mkfifo(path.c_str(), 0600) == 0);
+    const auto r = run_caustica("render locked.json -o out.png", dir);
+    CHECK(r.exit_code == 1);
+    CHECK(r.err.find("locked.json: not a regular file") != std::string::npos);
+    return;
+  }
+  const auto r = run_caustica("render locked.json -o out.png", dir);
+  CHECK(r.exit_code == 1);
+  CHECK(r.err.find("cannot open scene file") != std::string::npos);
+}
+
+TEST_CASE("cli: Ctrl-C stops a render within a second and keeps the completed passes", "[app][interrupt]") {
+  test::TempDir dir;
+  const std::string scene = std::string(CAUSTICA_SOURCE_DIR) + "/scenes/cornell-box.json";
+  const auto t0 = std::chrono::steady_clock::now();
+  // SIGINT after 1.5 s of a render that would take minutes.
+  const auto r = run_caustica("render '" + scene + "' --spp 100000 --width 64 --height 64 -o out.exr --threads 2", dir,
+                              "timeout --preserve-status -s INT 1.5 ");
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  INFO(r.err << r.out);
+  CHECK(r.exit_code == 130);
+  CHECK(seconds < 2.5 + 1.0);
+  CHECK(r.out.find("interrupted") != std::string::npos);
+  const Image img = read_image(dir.file("out.exr"));
+  CHECK(img.mean().x > 0.05f);  // the passes completed so far, not a black image
+  for (const auto& e : fs::directory_iterator(dir.path())) {
+    CHECK(e.path().filename().string().find(".tmp") == std::string::npos);
+  }
 }

@@ -201,11 +201,10 @@ TEST_CASE("scene loader: a degenerate triangle is a warning, not an error", "[co
   bool named = false;
   for (const std::string& w : loaded.warnings) named = named || (w.find("/objects/1") != std::string::npos && w.find("degenerate") != std::string::npos);
   CHECK(named);
-  // An emissive degenerate triangle cannot be a light, and is only warned about.
+  // An emissive degenerate triangle would be a zero-area light: that is an error.
   const std::string emissive = "[" + kSphere + R"(,
     {"type": "triangle", "vertices": [[0, 0, 0], [1, 1, 1], [2, 2, 2]], "material": "light"}])";
-  REQUIRE_NOTHROW(loaded = parse(scene_text(emissive)));
-  CHECK(loaded.scene->lights.empty());
+  REQUIRE_THROWS_WITH(parse(scene_text(emissive)), Contains("/objects/1: emissive object has zero area"));
 }
 
 TEST_CASE("scene loader: mesh files are resolved from the scene folder", "[core][scene_loader]") {

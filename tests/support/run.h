@@ -13,9 +13,10 @@ struct RunResult {
   std::string out, err;
 };
 
-inline RunResult run_caustica(const std::string& args, const TempDir& dir) {
+// `prefix` goes before the executable (e.g. "timeout -s INT 1 ").
+inline RunResult run_caustica(const std::string& args, const TempDir& dir, const std::string& prefix = "") {
   const std::string out = dir.file("stdout.txt"), err = dir.file("stderr.txt");
-  const std::string cmd = std::string("cd '") + dir.path().string() + "' && '" + CAUSTICA_EXE + "' " + args +
+  const std::string cmd = std::string("cd '") + dir.path().string() + "' && " + prefix + "'" + CAUSTICA_EXE + "' " + args +
                           " >'" + out + "' 2>'" + err + "' </dev/null";
   const int status = std::system(cmd.c_str());
   RunResult r;

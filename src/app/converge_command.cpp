@@ -1,0 +1,139 @@
+// `caustica converge`.
+#include "app/converge_command.h"
+#include <algorithm>
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+#include <tbb/global_control.h>
+#include "app/report.h"
+#include "core/metrics.h"
+#include "core/rng.h"
+#include "trace/render.h"
+
+namespace caustica {
+namespace fs = std::filesystem;
+
+std::vector<double> default_checkpoints(double time) {
+  std::vector<double> c;
+  for (double t = 1; t < time; t *= 2) c.push_back(t);
+  c.push_back(time);
+  return c;
+}
+
+std::string convergence_csv(const std::vector<ConvergeRow>& rows) {
+  std::ostringstream s;
+  s << "integrator,seconds,passes,rmse,relmse\n" << std::setprecision(9);
+  for (const ConvergeRow& r : rows) {
+    s << r.integrator << "," << r.seconds << "," << r.passes << "," << r.rmse << "," << r.relmse << "\n";
+  }
+  return s.str();
+}
+
+static void write_text(const fs::path& path, const std::string& text) {
+  const fs::path tmp = path.parent_path() / ("." + path.filename().string() + ".tmp");
+  {
+    std::ofstream out(tmp, std::ios::binary);
+    out << text;
+    if (!out) throw InputError(path.string() + ": cannot write");
+  }
+  std::error_code ec;
+  fs::rename(tmp, path, ec);
+  if (ec) throw InputError(path.string() + ": cannot write: " + ec.message());
+}
+
+int run_converge(const ConvergeArgs& args) {
+  std::error_code ec;
+  fs::create_directories(args.out_dir, ec);
+  if (!fs::is_directory(args.out_dir)) throw InputError(args.out_dir + ": cannot create the output folder");
+  const Image reference = read_image(args.reference);
+  LoadedScene loaded = load_scene_with(args.common);
+  Scene& scene = *loaded.scene;
+  // Without --seed, a seed derived from the scene's: a reference rendered with the scene's
+  // own seed would otherwise share its first passes with ours.
+  if (!args.common.seed) scene.render.seed = hash_seed(scene.render.seed, 0x636f6e76);  // "conv"
+  if (!args.common.width && !args.common.height) {
+    // Follow the reference's size unless the command line says otherwise.
+    scene.render.width = reference.width;
+    scene.render.height = reference.height;
+    scene.camera.set_resolution(reference.width, reference.height);
+  }
+  if (reference.width != scene.render.width || reference.height != scene.render.height) {
+    throw InputError(args.reference + ": reference is " + std::to_string(reference.width) + "x" +
+                     std::to_string(reference.height) + ", the render " + std::to_string(scene.render.width) + "x" +
+                     std::to_string(scene.render.height));
+  }
+  std::vector<double> checkpoints = args.checkpoints.empty() ? default_checkpoints(args.time) : args.checkpoints;
+  std::sort(checkpoints.begin(), checkpoints.end());
+  // Create every integrator first, so that a bad name fails before any rendering.
+  std::vector<std::unique_ptr<Integrator>> integrators;
+  for (const std::string& name : args.integrators) integrators.push_back(integrator_for(scene, name, args.common, true));
+
+  const int threads = thread_count(args.common);
+  tbb::global_control control(tbb::global_control::max_allowed_parallelism, size_t(threads));
+  std::vector<ConvergeRow> rows;
+  ReportData report;
+  report.title = fs::path(args.common.scene).filename().string() + ": " + std::to_string(int(args.time)) +
+                 " s per integrator";
+  report.facts = {{"scene", args.common.scene},
+                  {"reference", args.reference},
+                  {"resolution", std::to_string(scene.render.width) + "x" + std::to_string(scene.render.height)},
+                  {"threads", std::to_string(threads)},
+                  {"seed", std::to_string(scene.render.seed)}};
+  write_image((fs::path(args.out_dir) / "reference.png").string(), reference);
+  report.images.push_back({"reference", "reference.png"});
+  std::vector<ReportImage> error_images;
+
+  for (size_t i = 0; i < integrators.size(); ++i) {
+    Integrator& integ = *integrators[i];
+    const std::string name = args.integrators[i];
+    const auto t0 = std::chrono::steady_clock::now();
+    integ.preprocess(scene, {scene.render.seed, args.common.quiet});
+    const double pre = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    size_t next = 0;
+    ReportSeries series{name, {}};
+    auto record = [&](double seconds, long passes, const Image& mean) {
+      const ErrorMetrics m = compare_images(mean, reference);
+      rows.push_back({name, seconds, passes, m.rmse, m.relmse});
+      series.points.push_back({seconds, m.relmse, m.rmse, passes});
+      if (!args.common.quiet) {
+        std::cerr << name << ": " << std::fixed << std::setprecision(1) << seconds << " s, " << passes
+                  << " passes, relMSE " << std::scientific << std::setprecision(3) << m.relmse << std::defaultfloat
+                  << "\n";
+      }
+    };
+    RenderOptions options;
+    options.time_limit = std::max(1e-3, args.time - pre);
+    options.seed = scene.render.seed;
+    options.quiet = args.common.quiet;
+    options.on_pass = [&](int passes, double seconds, const Image& mean) {
+      const double t = pre + seconds;
+      if (next < checkpoints.size() && t >= checkpoints[next]) {
+        record(t, passes, mean);
+        while (next < checkpoints.size() && t >= checkpoints[next]) ++next;
+      }
+    };
+    RenderStats stats;
+    const Image image = render_image(scene, integ, options, stats);
+    const double total = pre + stats.seconds;
+    if (series.points.empty() || series.points.back().passes != stats.passes) record(total, stats.passes, image);
+    report.series.push_back(series);
+    const std::string stem = (fs::path(args.out_dir) / name).string();
+    write_image(stem + ".exr", image);
+    write_image(stem + ".png", image);
+    write_image(stem + "-error.png", error_map(image, reference));
+    report.images.push_back({name, name + ".png"});
+    error_images.push_back({name + " error", name + "-error.png"});
+    report.facts.emplace_back(name, std::to_string(stats.passes) + " passes in " + std::to_string(total) + " s (" +
+                                        std::to_string(pre) + " s preprocess)");
+  }
+  report.images.insert(report.images.end(), error_images.begin(), error_images.end());
+  write_text(fs::path(args.out_dir) / "convergence.csv", convergence_csv(rows));
+  write_report(args.out_dir, report);
+  if (!args.common.quiet) std::cout << "wrote " << (fs::path(args.out_dir) / "index.html").string() << "\n";
+  return 0;
+}
+
+}  // namespace caustica

@@ -1,0 +1,142 @@
+// `caustica photons`.
+#include "app/photons_command.h"
+#include <algorithm>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <iostream>
+#include <tbb/global_control.h>
+#include <unistd.h>
+#include "core/metrics.h"
+#include "trace/photon_integrator.h"
+#include "trace/render.h"
+
+namespace caustica {
+namespace fs = std::filesystem;
+
+namespace {
+// Photon colour: its flux's hue at full brightness (fluxes differ by orders of magnitude).
+Color flux_colour(const Color& power) {
+  const float m = max_component(power);
+  return m > 0 ? power / m : Color(0.0f);
+}
+
+bool visible_from_camera(const Scene& scene, const Photon& ph) {
+  const Vec3 eye = scene.camera.position();
+  const Vec3 n = ph.surface_normal();
+  if (glm::dot(n, eye - ph.position) <= 0) return false;  // seen from behind its surface
+  return !scene.occluded(spawn_ray_to(eye, Vec3(0.0f), ph.position, n));
+}
+}  // namespace
+
+Image splat_photons(const Scene& scene, const std::vector<const PhotonMap*>& maps, const Image& background,
+                    bool heatmap, size_t* visible) {
+  const int w = background.width, h = background.height;
+  Image colour(w, h);
+  std::vector<float> count(size_t(w) * h, 0.0f);
+  size_t seen = 0;
+  for (const PhotonMap* map : maps) {
+    for (uint32_t i = 0; i < map->size(); ++i) {
+      const Photon& ph = (*map)[i];
+      float x, y;
+      if (!scene.camera.project(ph.position, x, y) || !visible_from_camera(scene, ph)) continue;
+      const size_t p = size_t(int(y)) * w + size_t(int(x));
+      colour.pixels[p] += flux_colour(map->power(i));
+      count[p] += 1.0f;
+      ++seen;
+    }
+  }
+  if (visible) *visible = seen;
+  float max_count = 0;
+  for (float c : count) max_count = std::max(max_count, c);
+  Image out = background;
+  for (size_t p = 0; p < out.pixels.size(); ++p) {
+    if (count[p] == 0) continue;
+    if (heatmap) {
+      out.pixels[p] = false_colour(std::log1p(count[p]) / std::log1p(std::max(max_count, 1.0f)));
+    } else {
+      out.pixels[p] = glm::min(colour.pixels[p] / count[p] * std::min(1.0f, 0.35f + 0.15f * count[p]), Color(1.0f));
+    }
+  }
+  return out;
+}
+
+void write_ply(const std::string& path, const std::vector<const PhotonMap*>& maps) {
+  fs::path dir = fs::path(path).parent_path();
+  if (dir.empty()) dir = ".";
+  if (!fs::is_directory(dir)) throw InputError(path + ": output folder " + dir.string() + " does not exist");
+  size_t n = 0;
+  for (const PhotonMap* m : maps) n += m->size();
+  const fs::path tmp = dir / ("." + fs::path(path).filename().string() + ".tmp" + std::to_string(getpid()));
+  std::FILE* f = std::fopen(tmp.c_str(), "wb");
+  if (!f) throw InputError(path + ": cannot write");
+  std::fprintf(f,
+               "ply\nformat binary_little_endian 1.0\ncomment caustica photon map\nelement vertex %zu\n"
+               "property float x\nproperty float y\nproperty float z\n"
+               "property float nx\nproperty float ny\nproperty float nz\n"
+               "property uchar red\nproperty uchar green\nproperty uchar blue\nend_header\n",
+               n);
+  bool ok = true;
+  for (const PhotonMap* m : maps) {
+    for (uint32_t i = 0; i < m->size() && ok; ++i) {
+      const Photon& ph = (*m)[i];
+      const Vec3 nrm = ph.surface_normal();
+      const Color c = flux_colour(m->power(i));
+      unsigned char record[27];
+      const float floats[6] = {ph.position.x, ph.position.y, ph.position.z, nrm.x, nrm.y, nrm.z};
+      std::memcpy(record, floats, 24);
+      for (int k = 0; k < 3; ++k) record[24 + k] = static_cast<unsigned char>(std::lround(255.0f * std::clamp(c[k], 0.0f, 1.0f)));
+      ok = std::fwrite(record, sizeof record, 1, f) == 1;
+    }
+  }
+  ok = std::fclose(f) == 0 && ok;
+  std::error_code ec;
+  if (ok) fs::rename(tmp, path, ec);
+  if (!ok || ec) {
+    fs::remove(tmp, ec);
+    throw InputError(path + ": cannot write the point cloud");
+  }
+}
+
+int run_photons(const PhotonsArgs& args) {
+  const std::string ext = fs::path(args.output).extension().string();
+  if (ext != ".png" && ext != ".ply") throw InputError(args.output + ": output must be .png or .ply");
+  if (ext == ".png") check_output_path(args.output);
+  LoadedScene loaded = load_scene_with(args.common);
+  Scene& scene = *loaded.scene;
+  const int threads = thread_count(args.common);
+  tbb::global_control control(tbb::global_control::max_allowed_parallelism, size_t(threads));
+
+  auto integrator = integrator_for(scene, "photon", args.common);
+  auto* photon = dynamic_cast<PhotonIntegrator*>(integrator.get());
+  photon->preprocess(scene, {scene.render.seed, args.common.quiet});
+  std::vector<const PhotonMap*> maps;
+  if (args.map != "caustic") maps.push_back(&photon->global_map());
+  if (args.map != "global") maps.push_back(&photon->caustic_map());
+
+  size_t visible = 0, total = 0;
+  for (const PhotonMap* m : maps) total += m->size();
+  if (ext == ".ply") {
+    write_ply(args.output, maps);
+  } else {
+    // The scene dimmed: direct light and mirrors only, at a quarter of its brightness.
+    auto whitted = create_integrator("whitted", JsonSource{}, scene.render);
+    RenderOptions options;
+    options.spp = 4;
+    options.seed = scene.render.seed;
+    options.quiet = true;
+    RenderStats stats;
+    Image background = render_image(scene, *whitted, options, stats);
+    for (Color& c : background.pixels) c = Color(luminance(c) * 0.25f);
+    write_image(args.output, splat_photons(scene, maps, background, args.heatmap, &visible));
+  }
+  if (!args.common.quiet) {
+    std::cout << "photons: " << total << " in " << args.map << " map" << (args.map == "both" ? "s" : "") << "\n"
+              << photon->describe();
+    if (ext == ".png") std::cout << "visible from the camera: " << visible << "\n";
+    std::cout << "wrote " << args.output << "\n";
+  }
+  return 0;
+}
+
+}  // namespace caustica

@@ -1,0 +1,77 @@
+// `caustica converge`: checkpoints, the CSV, and a short end-to-end run.
+#include <catch2/catch.hpp>
+#include <filesystem>
+#include <sstream>
+#include "app/converge_command.h"
+#include "core/image.h"
+#include "support/run.h"
+
+using namespace caustica;
+namespace fs = std::filesystem;
+
+TEST_CASE("converge: default checkpoints are powers of two up to the budget", "[app][converge]") {
+  CHECK(default_checkpoints(10) == std::vector<double>{1, 2, 4, 8, 10});
+  CHECK(default_checkpoints(8) == std::vector<double>{1, 2, 4, 8});
+  CHECK(default_checkpoints(0.5) == std::vector<double>{0.5});
+}
+
+TEST_CASE("converge: the CSV has a header and one line per row", "[app][converge]") {
+  const std::vector<ConvergeRow> rows = {{"photon", 1.5, 3, 0.25, 0.125}, {"path", 2, 40, 0.5, 0.0625}};
+  const std::string csv = convergence_csv(rows);
+  CHECK(csv == "integrator,seconds,passes,rmse,relmse\nphoton,1.5,3,0.25,0.125\npath,2,40,0.5,0.0625\n");
+}
+
+TEST_CASE("converge: a short run writes the CSV, images, error maps and the report", "[app][converge]") {
+  test::TempDir dir;
+  const std::string tiny = std::string(CAUSTICA_SOURCE_DIR) + "/tests/data/tiny.json";
+  auto r = test::run_caustica("render '" + tiny + "' --spp 64 -o ref.exr -q", dir);
+  REQUIRE(r.exit_code == 0);
+  r = test::run_caustica("converge '" + tiny + "' --reference ref.exr --integrators path,photon --time 1.5 "
+                         "--checkpoints 0.5,1 --photons 5000 --out report -q",
+                         dir);
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  for (const char* f : {"convergence.csv", "index.html", "reference.png", "path.exr", "path.png", "path-error.png",
+                        "photon.exr", "photon.png", "photon-error.png"}) {
+    CHECK(fs::exists(dir.path() / "report" / f));
+  }
+  std::istringstream csv(test::read_text(dir.file("report/convergence.csv")));
+  std::string line;
+  std::getline(csv, line);
+  CHECK(line == "integrator,seconds,passes,rmse,relmse");
+  int path_rows = 0, photon_rows = 0;
+  double last_path_relmse = 1e30;
+  while (std::getline(csv, line)) {
+    std::istringstream fields(line);
+    std::string name, seconds, passes, rmse, relmse;
+    std::getline(fields, name, ',');
+    std::getline(fields, seconds, ',');
+    std::getline(fields, passes, ',');
+    std::getline(fields, rmse, ',');
+    std::getline(fields, relmse, ',');
+    CHECK(std::stod(seconds) > 0);
+    CHECK(std::stod(seconds) < 1.5 * 1.5);
+    CHECK(std::stol(passes) >= 1);
+    CHECK(std::stod(rmse) > 0);
+    if (name == "path") {
+      ++path_rows;
+      CHECK(std::stod(relmse) <= last_path_relmse * 1.05);  // the error falls as passes add up
+      last_path_relmse = std::stod(relmse);
+    }
+    photon_rows += name == "photon";
+  }
+  CHECK(path_rows >= 2);
+  CHECK(photon_rows >= 1);
+}
+
+TEST_CASE("converge: bad input is a clear error", "[app][converge]") {
+  test::TempDir dir;
+  const std::string tiny = std::string(CAUSTICA_SOURCE_DIR) + "/tests/data/tiny.json";
+  write_image(dir.file("small.exr"), Image(8, 8));
+  auto r = test::run_caustica("converge '" + tiny + "' --reference small.exr --integrators path --time 1 --width 16 --out o", dir);
+  CHECK(r.exit_code == 1);
+  CHECK(r.err.find("small.exr: reference is 8x8") != std::string::npos);
+  r = test::run_caustica("converge '" + tiny + "' --reference small.exr --integrators path,pathx --time 1 --out o", dir);
+  CHECK(r.exit_code == 1);
+  CHECK(r.err.find("unknown integrator \"pathx\"") != std::string::npos);
+}

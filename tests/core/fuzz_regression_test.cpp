@@ -1,0 +1,99 @@
+// Scene-loader fuzz regressions: inputs the fuzzer (fuzz/scene_fuzzer.cpp) or a hand found nasty
+// must load or be rejected with InputError, never crash, hang or throw anything else.
+#include <catch2/catch.hpp>
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include "core/json_reader.h"
+#include "core/scene_loader.h"
+
+using namespace caustica;
+using Catch::Matchers::Contains;
+using Catch::Matchers::StartsWith;
+
+namespace {
+// Same as the fuzzer: relative mesh paths lead nowhere.
+const char* const kNoMeshDir = "/nonexistent/caustica-fuzz-no-meshes";
+
+// Swallows only InputError, so REQUIRE_NOTHROW fails on any other exception.
+std::string load_or_reject(const std::string& text) {
+  try {
+    parse_scene(text, "fuzz.json", kNoMeshDir);
+    return "loaded";
+  } catch (const InputError& e) {
+    return e.what();
+  }
+}
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+const std::string kHead = R"({"camera": {"position": [0, 0, -5], "look_at": [0, 0, 0]},
+  "materials": {"w": {"type": "diffuse"}},
+  "objects": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "w"})";
+}  // namespace
+
+TEST_CASE("fuzz regressions: every input in tests/data/fuzz loads or is rejected", "[core][fuzz]") {
+  size_t count = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(CAUSTICA_SOURCE_DIR "/tests/data/fuzz")) {
+    if (!entry.is_regular_file()) continue;
+    std::ifstream in(entry.path(), std::ios::binary);
+    std::ostringstream text;
+    text << in.rdbuf();
+    INFO(entry.path().string());
+    const auto start = std::chrono::steady_clock::now();
+    std::string outcome;
+    REQUIRE_NOTHROW(outcome = load_or_reject(text.str()));
+    INFO(outcome);
+    CHECK(seconds_since(start) < 2.0);  // small files: anything slower is a hang in the making
+    ++count;
+  }
+  CHECK(count >= 10);
+}
+
+TEST_CASE("fuzz regressions: large generated inputs", "[core][fuzz]") {
+  SECTION("100000 nested arrays: an error with a position, not a stack overflow") {
+    const std::string open(100000, '[');
+    REQUIRE_THROWS_WITH(parse_scene(open, "fuzz.json", kNoMeshDir),
+                        StartsWith("fuzz.json:1:513: ") && Contains("nesting deeper than 512 levels"));
+    REQUIRE_NOTHROW(load_or_reject(open + std::string(100000, ']')));
+    // Copying the integrator block recursed once per level and overflowed the stack.
+    const std::string text = "{\"integrator\": {\"type\": \"path\",\n \"x\": " + open + std::string(100000, ']') +
+                             "},\n" + kHead.substr(1) + "]}";
+    REQUIRE_THROWS_WITH(parse_scene(text, "fuzz.json", kNoMeshDir),
+                        StartsWith("fuzz.json:2:") && Contains("nesting deeper than 512 levels"));
+  }
+  SECTION("brackets inside strings and comments do not count as nesting") {
+    const std::string deep(1000, '[');
+    const std::string text = "// " + deep + "\n/* " + deep + " */\n" + kHead +
+                             ", {\"type\": \"sphere\", \"name\": \"" + deep + "\\\"" + deep +
+                             "\", \"center\": [3, 0, 0], \"radius\": 1, \"material\": \"w\"}]}";
+    LoadedScene loaded;
+    REQUIRE_NOTHROW(loaded = parse_scene(text, "fuzz.json", kNoMeshDir));
+    CHECK(loaded.sphere_count == 2);
+  }
+  SECTION("a mesh of 1e6 triangles all on vertex 0 loads quickly and is left out") {
+    std::string indices = "[0, 0, 0]";
+    indices.reserve(11 * 1000000);
+    for (int i = 1; i < 1000000; ++i) indices += ", [0, 0, 0]";
+    const std::string text = kHead + R"(, {"type": "mesh", "vertices": [[0, 0, 0]], "indices": [)" + indices +
+                             R"(], "material": "w"}]})";
+    const auto start = std::chrono::steady_clock::now();
+    LoadedScene loaded;
+    REQUIRE_NOTHROW(loaded = parse_scene(text, "fuzz.json", kNoMeshDir));
+    CHECK(seconds_since(start) < 20.0);
+    CHECK(loaded.triangle_count == 0);
+    CHECK(loaded.sphere_count == 1);
+  }
+  SECTION("a 16384 x 16384 render loads at once: the loader allocates no image") {
+    const std::string text = kHead + R"(], "render": {"width": 16384, "height": 16384, "spp": 16777216}})";
+    const auto start = std::chrono::steady_clock::now();
+    LoadedScene loaded;
+    REQUIRE_NOTHROW(loaded = parse_scene(text, "fuzz.json", kNoMeshDir));
+    CHECK(seconds_since(start) < 1.0);
+    CHECK(loaded.scene->render.width == 16384);
+    CHECK(loaded.scene->render.height == 16384);
+  }
+}
