@@ -18,7 +18,8 @@ class PhotonMap {
   PhotonMap(PhotonMap&&) noexcept;
   PhotonMap& operator=(PhotonMap&&) noexcept;
 
-  // Takes the photons and builds the kd-tree. leaf_size was tuned by bench/ (see BENCHMARKS.md).
+  // Takes the photons, orders them along a Morton curve (indices refer to that order) and
+  // builds the kd-tree. leaf_size was tuned by bench/ (see BENCHMARKS.md).
   // flux_scale multiplies every record's stored power (see Photon).
   void build(std::vector<Photon> photons, float flux_scale = 1.0f, size_t leaf_size = kDefaultLeafSize);
   Color power(uint32_t i) const { return photons_[i].power() * flux_scale_; }
