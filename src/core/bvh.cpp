@@ -17,6 +17,13 @@ inline bool hit_box(const Bounds& b, const Vec3& org, const Vec3& inv_dir, float
   const float tf = std::min(std::min(tfar.x, tfar.y), std::min(tfar.z, tmax));
   return tnear <= tf * 1.00000024f;  // two ulps of slack so thin boxes are never missed
 }
+
+// Centroid bin from (centroid - lo) * kBins / extent. When the extent overflows to inf (centroids
+// near +-3e38) that product is inf * 0 = NaN, and converting NaN to int is undefined behaviour
+// (UBSan, scene fuzzing): clamp as a float first, NaN going to bin 0.
+inline int centroid_bin(float scaled) {
+  return scaled > 0.0f ? static_cast<int>(std::min(scaled, float(kBins - 1))) : 0;
+}
 }  // namespace
 
 void Bvh::build(std::vector<Primitive> prims) {
@@ -27,16 +34,23 @@ void Bvh::build(std::vector<Primitive> prims) {
   std::vector<BuildItem> items(input_.size());
   for (uint32_t i = 0; i < items.size(); ++i)
     items[i] = {input_[i].bounds(), input_[i].centroid(), i};
-  nodes_.reserve(2 * items.size());
+  nodes_.reserve(2 * items.size() + 2);
   prims_.reserve(input_.size());
-  build_node(items, 0, static_cast<uint32_t>(items.size()), 0);
+  // The root, then a pad: every pair of siblings then starts at an even index, so with the
+  // 64-byte aligned storage both children's boxes arrive in one cache line.
+  nodes_.resize(2);
+  build_node(items, 0, static_cast<uint32_t>(items.size()), 0, 0);
+  accel_.clear();
+  accel_.reserve(prims_.size());
+  for (const Primitive& p : prims_) {
+    if (p.kind == ShapeKind::Sphere) accel_.push_back({p.p0, Vec3(p.radius(), 0, 0), Vec3(0.0f), 1});
+    else accel_.push_back({p.p0, p.p1 - p.p0, p.p2 - p.p0, 0});
+  }
   input_.clear();
   input_.shrink_to_fit();
 }
 
-uint32_t Bvh::build_node(std::vector<BuildItem>& items, uint32_t begin, uint32_t end, int depth) {
-  const uint32_t index = static_cast<uint32_t>(nodes_.size());
-  nodes_.push_back({});
+void Bvh::build_node(std::vector<BuildItem>& items, uint32_t begin, uint32_t end, int depth, uint32_t index) {
   Bounds bounds, centroids;
   for (uint32_t i = begin; i < end; ++i) {
     bounds.extend(items[i].bounds);
@@ -46,7 +60,6 @@ uint32_t Bvh::build_node(std::vector<BuildItem>& items, uint32_t begin, uint32_t
   auto make_leaf = [&] {
     nodes_[index] = {bounds, static_cast<uint32_t>(prims_.size()), static_cast<uint16_t>(n), 0};
     for (uint32_t i = begin; i < end; ++i) prims_.push_back(input_[items[i].index]);
-    return index;
   };
   if (n <= 1) return make_leaf();
 
@@ -61,8 +74,7 @@ uint32_t Bvh::build_node(std::vector<BuildItem>& items, uint32_t begin, uint32_t
     uint32_t bin_count[kBins] = {};
     const float scale = kBins / cext[axis];
     for (uint32_t i = begin; i < end; ++i) {
-      int b = static_cast<int>((items[i].centroid[axis] - centroids.lo[axis]) * scale);
-      b = std::clamp(b, 0, kBins - 1);
+      const int b = centroid_bin((items[i].centroid[axis] - centroids.lo[axis]) * scale);
       bin_bounds[b].extend(items[i].bounds);
       ++bin_count[b];
     }
@@ -99,8 +111,7 @@ uint32_t Bvh::build_node(std::vector<BuildItem>& items, uint32_t begin, uint32_t
     const float scale = kBins / cext[best_axis];
     const float lo = centroids.lo[best_axis];
     auto it = std::partition(items.begin() + begin, items.begin() + end, [&](const BuildItem& it) {
-      int b = std::clamp(static_cast<int>((it.centroid[best_axis] - lo) * scale), 0, kBins - 1);
-      return b <= best_bin;
+      return centroid_bin((it.centroid[best_axis] - lo) * scale) <= best_bin;
     });
     mid = static_cast<uint32_t>(it - items.begin());
   } else {
@@ -108,10 +119,11 @@ uint32_t Bvh::build_node(std::vector<BuildItem>& items, uint32_t begin, uint32_t
   }
   if (mid == begin || mid == end) mid = begin + n / 2;
   const int axis = best_axis >= 0 ? best_axis : 0;
-  build_node(items, begin, mid, depth + 1);
-  const uint32_t right = build_node(items, mid, end, depth + 1);
-  nodes_[index] = {bounds, right, 0, static_cast<uint16_t>(axis)};
-  return index;
+  const uint32_t left = static_cast<uint32_t>(nodes_.size());
+  nodes_.resize(nodes_.size() + 2);
+  build_node(items, begin, mid, depth + 1, left);
+  build_node(items, mid, end, depth + 1, left + 1);
+  nodes_[index] = {bounds, left, 0, static_cast<uint16_t>(axis)};
 }
 
 template <bool AnyHit>
@@ -119,7 +131,11 @@ bool Bvh::traverse(const Ray& ray, Hit& hit) const {
   if (nodes_.empty()) return false;
   const Vec3 inv_dir = 1.0f / ray.dir;
   const bool dir_neg[3] = {ray.dir.x < 0, ray.dir.y < 0, ray.dir.z < 0};
-  uint32_t stack[128];  // depth <= kMaxDepth + 32
+  struct Entry {
+    uint32_t node;
+    float tnear;
+  };
+  Entry stack[128];  // depth <= kMaxDepth + 32
   int sp = 0;
   uint32_t node = 0;
   float tmax = ray.tmax;
@@ -130,8 +146,11 @@ bool Bvh::traverse(const Ray& ray, Hit& hit) const {
     const Node& nd = nodes_[node];
     if (nd.count > 0) {
       for (uint32_t i = nd.offset; i < nd.offset + nd.count; ++i) {
-        float t;
-        if (intersect_primitive(ray, prims_[i], tmax, t)) {
+        const Accel& a = accel_[i];
+        float t, u, v;
+        const bool h = a.is_sphere ? intersect_sphere(ray, a.p0, a.e1.x, tmax, t)
+                                   : intersect_triangle_edges(ray, a.p0, a.e1, a.e2, tmax, t, u, v);
+        if (h) {
           if (AnyHit) return true;
           tmax = t;
           hit.t = t;
@@ -140,15 +159,18 @@ bool Bvh::traverse(const Ray& ray, Hit& hit) const {
         }
       }
     } else {
-      // Visit the near child first; push the far one.
-      uint32_t first = node + 1, second = nd.offset;
+      // Visit the near child first; push the far one with its entry distance.
+      uint32_t first = nd.offset, second = nd.offset + 1;
       if (dir_neg[nd.axis]) std::swap(first, second);
       float t_first, t_second;
       const bool h1 = hit_box(nodes_[first].bounds, ray.origin, inv_dir, tmax, t_first);
       const bool h2 = hit_box(nodes_[second].bounds, ray.origin, inv_dir, tmax, t_second);
       if (h1 && h2) {
-        if (t_second < t_first) std::swap(first, second);
-        stack[sp++] = second;
+        if (t_second < t_first) {
+          std::swap(first, second);
+          std::swap(t_first, t_second);
+        }
+        stack[sp++] = {second, t_second};
         node = first;
         continue;
       }
@@ -157,11 +179,12 @@ bool Bvh::traverse(const Ray& ray, Hit& hit) const {
         continue;
       }
     }
-    // Pop until a node that may still hold something closer.
+    // Pop until a node that the ray enters before the closest hit so far.
     bool next = false;
     while (sp > 0) {
-      node = stack[--sp];
-      if (hit_box(nodes_[node].bounds, ray.origin, inv_dir, tmax, tnear)) {
+      const Entry e = stack[--sp];
+      if (e.tnear <= tmax) {
+        node = e.node;
         next = true;
         break;
       }

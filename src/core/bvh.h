@@ -1,5 +1,6 @@
 // Bounding volume hierarchy: binned SAH build, flattened nodes, iterative traversal.
 #pragma once
+#include <new>
 #include <vector>
 #include "core/shape.h"
 
@@ -22,23 +23,41 @@ class Bvh {
   bool occluded(const Ray& ray) const;             // any hit with t < ray.tmax
 
  private:
-  struct Node {
+  struct alignas(32) Node {
     Bounds bounds;
-    uint32_t offset;  // leaf: first primitive; interior: index of the second child
+    uint32_t offset;  // leaf: first primitive; interior: index of the first child (the second follows)
     uint16_t count;   // primitives in a leaf; 0 for an interior node
     uint16_t axis;
+  };
+  // What the hot loop reads: a triangle as a vertex and two edges, or a sphere (p0, radius).
+  struct Accel {
+    Vec3 p0, e1, e2;
+    uint32_t is_sphere;
   };
   struct BuildItem {
     Bounds bounds;
     Vec3 centroid;
     uint32_t index;
   };
-  uint32_t build_node(std::vector<BuildItem>& items, uint32_t begin, uint32_t end, int depth);
+  void build_node(std::vector<BuildItem>& items, uint32_t begin, uint32_t end, int depth, uint32_t index);
   template <bool AnyHit>
   bool traverse(const Ray& ray, Hit& hit) const;
 
-  std::vector<Node> nodes_;
+  // 64-byte aligned, so that sibling pairs (at even indices) share a cache line.
+  template <class T>
+  struct CacheAligned {
+    using value_type = T;
+    CacheAligned() = default;
+    template <class U>
+    CacheAligned(const CacheAligned<U>&) {}
+    T* allocate(size_t n) { return static_cast<T*>(::operator new(n * sizeof(T), std::align_val_t(64))); }
+    void deallocate(T* p, size_t) { ::operator delete(p, std::align_val_t(64)); }
+    bool operator==(const CacheAligned&) const { return true; }
+    bool operator!=(const CacheAligned&) const { return false; }
+  };
+  std::vector<Node, CacheAligned<Node>> nodes_;
   std::vector<Primitive> prims_;
+  std::vector<Accel> accel_;  // parallel to prims_
   std::vector<Primitive> input_;
 };
 

@@ -1,0 +1,149 @@
+// Kernel benchmarks: ray casting (ours and Embree's), BVH build, photon pass, kd-tree build
+// and queries, final gathering. Reproduce with: bash scripts/bench.sh (see BENCHMARKS.md).
+#include <benchmark/benchmark.h>
+#include <tbb/global_control.h>
+#include <tbb/parallel_for.h>
+#include "bench_util.h"
+#include "core/rng.h"
+#include "photon/photon_tracer.h"
+#include "trace/photon_integrator.h"
+#include "trace/render.h"
+
+using namespace caustica;
+using namespace caustica::bench;
+
+namespace {
+
+const Scene* scene_by_index(int i) { return i == 0 ? cornell_spheres() : bunny(); }
+const char* scene_name(int i) { return i == 0 ? "cornell-spheres" : "bunny"; }
+
+// args: scene (0 cornell-spheres, 1 bunny), shadow (0/1), threads
+void BM_Rays(benchmark::State& state) {
+  const Scene* scene = scene_by_index(int(state.range(0)));
+  if (!scene) return state.SkipWithError("bunny.obj missing (install glmark2-data)");
+  const bool shadow = state.range(1) != 0;
+  const RayBatch batch = make_rays(*scene, 1 << 20, shadow, 7);
+  tbb::global_control c(tbb::global_control::max_allowed_parallelism, size_t(state.range(2)));
+  size_t hits = 0;
+  for (auto _ : state) {
+    std::atomic<size_t> h{0};
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, batch.rays.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
+      size_t local = 0;
+      for (size_t i = r.begin(); i != r.end(); ++i) {
+        if (shadow) {
+          local += scene->occluded(batch.rays[i]);
+        } else {
+          Hit hit;
+          local += scene->bvh().intersect(batch.rays[i], hit);
+        }
+      }
+      h += local;
+    });
+    hits = h;
+  }
+  state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(batch.rays.size()));
+  state.counters["hit_fraction"] = double(hits) / double(batch.rays.size());
+  state.SetLabel(std::string(scene_name(int(state.range(0)))) + (shadow ? " shadow" : " closest"));
+}
+BENCHMARK(BM_Rays)->ArgsProduct({{0, 1}, {0, 1}, {1, 2}})->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void BM_BvhBuild(benchmark::State& state) {
+  const Scene* scene = bunny();
+  if (!scene) return state.SkipWithError("bunny.obj missing (install glmark2-data)");
+  const std::vector<Primitive> prims = scene->bvh().primitives();
+  for (auto _ : state) {
+    Bvh bvh;
+    bvh.build(prims);
+    benchmark::DoNotOptimize(bvh.node_count());
+  }
+  state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(prims.size()));
+  state.SetLabel("bunny, " + std::to_string(prims.size()) + " triangles");
+}
+BENCHMARK(BM_BvhBuild)->Unit(benchmark::kMillisecond);
+
+// args: caustic (0 global, 1 caustic), threads
+void BM_PhotonPass(benchmark::State& state) {
+  const Scene* scene = cornell_spheres();
+  const bool caustic = state.range(0) != 0;
+  tbb::global_control c(tbb::global_control::max_allowed_parallelism, size_t(state.range(1)));
+  PhotonPassSettings s;
+  s.global_photons = caustic ? 0 : 1000000;
+  s.caustic_photons = caustic ? 1000000 : 0;
+  size_t stored = 0;
+  for (auto _ : state) {
+    const PhotonPassResult r = trace_photons(*scene, s);
+    stored = r.global.size() + r.caustic.size();
+  }
+  state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(stored));
+  state.SetLabel(std::string(caustic ? "caustic" : "global") + " photons stored, cornell-spheres");
+}
+BENCHMARK(BM_PhotonPass)->ArgsProduct({{0, 1}, {1, 2}})->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// args: photons, leaf size
+void BM_KdTreeBuild(benchmark::State& state) {
+  const size_t n = size_t(state.range(0));
+  const std::vector<Photon> source(cornell_photons(n).begin(), cornell_photons(n).begin() + long(n));
+  size_t bytes = 0;
+  for (auto _ : state) {
+    PhotonMap map;
+    map.build(source, 1.0f, size_t(state.range(1)));
+    bytes = map.memory_bytes();
+  }
+  state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(n));
+  state.counters["bytes_per_photon"] = double(bytes) / double(n);
+}
+BENCHMARK(BM_KdTreeBuild)
+    ->ArgsProduct({{100000, 250000, 1000000, 4000000}, {32}})
+    ->ArgsProduct({{1000000}, {8, 16, 64}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+// args: k (0 = radius query), leaf size
+void BM_KdTreeQuery(benchmark::State& state) {
+  const size_t n = 1000000;
+  PhotonMap map;
+  map.build(std::vector<Photon>(cornell_photons(n).begin(), cornell_photons(n).begin() + long(n)), 1.0f,
+            size_t(state.range(1)));
+  // Queries at other photons' positions: where lookups happen in a render.
+  Rng rng(3);
+  std::vector<Vec3> queries(4096);
+  for (Vec3& q : queries) q = map[uint32_t(rng.next_u32() % n)].position + Vec3(0.5f, 0.0f, -0.5f);
+  std::vector<Neighbour> out;
+  const size_t k = size_t(state.range(0));
+  size_t i = 0, found = 0;
+  for (auto _ : state) {
+    const Vec3& q = queries[i++ & 4095];
+    found += k > 0 ? map.knn(q, k, 50.0f, out) : map.radius_query(q, 10.0f, out);
+  }
+  state.SetItemsProcessed(int64_t(state.iterations()));
+  state.counters["found"] = double(found) / double(state.iterations());
+  state.SetLabel(k > 0 ? "k-NN within 50, 1M photons" : "radius 10, 1M photons");
+}
+BENCHMARK(BM_KdTreeQuery)->ArgsProduct({{50, 100, 0}, {32}})->ArgsProduct({{50}, {8, 16, 64}});
+
+// args: irradiance stride (0 = off)
+void BM_FinalGather(benchmark::State& state) {
+  Scene& scene = const_cast<Scene&>(*cornell_spheres());
+  const int size = 64;
+  scene.camera.set_resolution(size, size);
+  JsonSource settings;
+  settings.value = {{"photons", 200000}, {"caustic_photons", 0}, {"gather_rays", 32},
+                    {"irradiance_stride", state.range(0)}};
+  PhotonIntegrator integrator(settings, scene.render, true);
+  integrator.preprocess(scene, {0, true});
+  RenderOptions options;
+  options.spp = 1;
+  options.quiet = true;
+  for (auto _ : state) {
+    RenderStats stats;
+    benchmark::DoNotOptimize(render_image(scene, integrator, options, stats));
+  }
+  scene.camera.set_resolution(scene.render.width, scene.render.height);
+  state.SetItemsProcessed(int64_t(state.iterations()) * size * size);
+  state.SetLabel(state.range(0) > 0 ? "pixels, precomputed irradiance" : "pixels, full k-NN estimate");
+}
+BENCHMARK(BM_FinalGather)->Arg(4)->Arg(0)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+}  // namespace
+
+BENCHMARK_MAIN();
