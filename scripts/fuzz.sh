@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Fuzzes the scene loader with libFuzzer + ASan + UBSan for SECONDS (default 600) in build-fuzz/.
 # Usage: scripts/fuzz.sh [SECONDS]. Crashes, hangs and leaks land in build-fuzz/artifacts/.
+# CAUSTICA_FUZZ_JOBS=1 limits the build to one job (default: all cores).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds="${1:-600}"

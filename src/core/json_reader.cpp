@@ -2,6 +2,8 @@
 #include "core/json_reader.h"
 #include <algorithm>
 #include <cctype>
+#include <cmath>
+#include <limits>
 #include <sstream>
 
 namespace caustica {
@@ -154,6 +156,9 @@ double JsonReader::number(const nlohmann::json& v, const std::string& pointer) c
   if (!v.is_number()) fail(pointer, "expected a number, found " + type_name(v));
   const double d = v.get<double>();
   if (!std::isfinite(d)) fail(pointer, "number is not finite");
+  // Every number is stored as a float: 1e308 would become inf (and converting a double outside
+  // the float range is undefined behaviour), turning the camera or bounds into NaN.
+  if (std::abs(d) > std::numeric_limits<float>::max()) fail(pointer, "number is too large (beyond the float range, about 3.4e38)");
   return d;
 }
 
@@ -171,8 +176,8 @@ int64_t JsonReader::integer(const nlohmann::json& v, const std::string& pointer,
   if (!v.is_number_integer()) fail(pointer, "expected an integer, found " + type_name(v));
   const int64_t i = v.is_number_unsigned() && v.get<uint64_t>() > uint64_t(INT64_MAX) ? INT64_MAX : v.get<int64_t>();
   if (i < lo || i > hi) {
-    fail(pointer, "value " + std::to_string(i) + " is out of range [" + std::to_string(lo) + ", " +
-                      std::to_string(hi) + "]");
+    // v.dump() prints the number as written (an unsigned value past INT64_MAX was clamped in i).
+    fail(pointer, "value " + v.dump() + " is out of range [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
   }
   return i;
 }

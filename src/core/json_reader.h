@@ -31,7 +31,7 @@ class JsonReader {
                     std::initializer_list<const char*> known) const;
   const nlohmann::json& require(const nlohmann::json& obj, const std::string& pointer, const char* key) const;
 
-  double number(const nlohmann::json& v, const std::string& pointer) const;  // finite
+  double number(const nlohmann::json& v, const std::string& pointer) const;  // finite, fits a float
   double number_in(const nlohmann::json& v, const std::string& pointer, double lo, double hi) const;
   int64_t integer(const nlohmann::json& v, const std::string& pointer, int64_t lo, int64_t hi) const;
   bool boolean(const nlohmann::json& v, const std::string& pointer) const;

@@ -87,6 +87,17 @@ TEST_CASE("fuzz regressions: large generated inputs", "[core][fuzz]") {
     CHECK(loaded.triangle_count == 0);
     CHECK(loaded.sphere_count == 1);
   }
+  SECTION("1e308 is refused (it would be inf as a float); centroids at +-3e38 still build a BVH") {
+    const std::string far = R"(, {"type": "sphere", "center": [X, 0, 0], "radius": 1, "material": "w"})";
+    auto sphere_at = [&](const std::string& x) { return far.substr(0, far.find('X')) + x + far.substr(far.find('X') + 1); };
+    REQUIRE_THROWS_WITH(parse_scene(kHead + sphere_at("1e308") + "]}", "fuzz.json", kNoMeshDir),
+                        Contains("/objects/1/center/0: number is too large"));
+    // The centroid extent overflows to inf: binning computed inf * 0 = NaN and cast it to int.
+    LoadedScene loaded;
+    REQUIRE_NOTHROW(loaded = parse_scene(kHead + sphere_at("3e38") + sphere_at("-3e38") + sphere_at("2") + "]}",
+                                         "fuzz.json", kNoMeshDir));
+    CHECK(loaded.scene->bvh().primitives().size() == 4);
+  }
   SECTION("a 16384 x 16384 render loads at once: the loader allocates no image") {
     const std::string text = kHead + R"(], "render": {"width": 16384, "height": 16384, "spp": 16777216}})";
     const auto start = std::chrono::steady_clock::now();
