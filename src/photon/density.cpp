@@ -70,14 +70,15 @@ void IrradianceCache::build(const PhotonMap& global, size_t stride, const Estima
     const Vec3 normal = ph.surface_normal();
     points[i] = Photon::make(ph.position, irradiance[i] / float(mean), normal, normal, 0);
   }
-  points_.build(std::move(points), float(mean));
+  points_.build(std::move(points), float(mean), kLeafSize);
 }
 
 bool IrradianceCache::lookup(const Vec3& p, const Vec3& n_side, float max_radius, Color& E,
                              std::vector<Neighbour>& scratch) const {
   // The nearest point nearly always lies on the same surface; look further only when not.
   for (size_t k : {size_t(1), size_t(8)}) {
-    points_.knn(p, k, max_radius, scratch);
+    // Approximate nearest (within twice the distance) is as good here and cheaper.
+    points_.knn(p, k, max_radius, scratch, 1.0f);
     for (const Neighbour& nb : scratch) {
       if (normals_agree(points_[nb.index].surface_normal(), n_side)) {
         E = points_.power(nb.index);

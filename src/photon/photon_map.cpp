@@ -116,12 +116,12 @@ void PhotonMap::build(std::vector<Photon> photons, float flux_scale, size_t leaf
   tree_->index->buildIndex();
 }
 
-size_t PhotonMap::knn(const Vec3& p, size_t k, float max_radius, std::vector<Neighbour>& out) const {
+size_t PhotonMap::knn(const Vec3& p, size_t k, float max_radius, std::vector<Neighbour>& out, float eps) const {
   out.clear();
   if (!tree_ || !tree_->index || k == 0) return 0;
   KnnWithinRadius result(k, max_radius * max_radius, out);
   const float q[3] = {p.x, p.y, p.z};
-  tree_->index->findNeighbors(result, q, nanoflann::SearchParams());
+  tree_->index->findNeighbors(result, q, nanoflann::SearchParams(32, eps));
   return out.size();
 }
 

@@ -25,7 +25,9 @@ class PhotonMap {
   Color power(uint32_t i) const { return photons_[i].power() * flux_scale_; }
   float flux_scale() const { return flux_scale_; }
   // The k nearest photons within max_radius, nearest first. Returns how many were found.
-  size_t knn(const Vec3& p, size_t k, float max_radius, std::vector<Neighbour>& out) const;
+  // With eps > 0 the search is approximate: each result is within (1 + eps) times the distance
+  // of the true one (nanoflann's pruning rule), which is faster.
+  size_t knn(const Vec3& p, size_t k, float max_radius, std::vector<Neighbour>& out, float eps = 0.0f) const;
   // All photons within radius (unsorted).
   size_t radius_query(const Vec3& p, float radius, std::vector<Neighbour>& out) const;
 
