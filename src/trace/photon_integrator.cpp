@@ -167,10 +167,15 @@ void PhotonIntegrator::record_aov(const SurfaceHit& hit, const Vec3& wo, float* 
 }
 
 Color PhotonIntegrator::Li(const Ray& camera_ray, const Scene& scene, Sampler& sampler) const {
+  return trace_eye(camera_ray, scene, sampler, 0, kSplitLevels);
+}
+
+Color PhotonIntegrator::trace_eye(const Ray& start, const Scene& scene, Sampler& sampler, int depth,
+                                  int splits_left) const {
   std::vector<Neighbour>& scratch = tls_scratch;
   Color L(0.0f), beta(1.0f);
-  Ray ray = camera_ray;
-  for (int depth = 0; depth < settings_.max_depth; ++depth) {
+  Ray ray = start;
+  for (; depth < settings_.max_depth; ++depth) {
     SurfaceHit hit;
     ++sampler.rays;
     if (!scene.intersect(ray, hit)) break;
@@ -187,6 +192,18 @@ Color PhotonIntegrator::Li(const Ray& camera_ray, const Scene& scene, Sampler& s
       if (!caustic_.empty()) L += beta * radiance_estimate(caustic_, hit.p, hit.n, wo, m, caustic_est_, scratch);
       L += beta * final_gather(scene, hit, wo, sampler, scratch);
       return L;
+    }
+    const auto* glass = dynamic_cast<const Glass*>(&m);
+    Vec3 wt;
+    if (glass && splits_left > 0 && glass->refract(wo_l, wt)) {
+      // Follow both reflection and refraction, weighted by Fresnel, instead of choosing one
+      // at random: choosing leaves bright speckles (the light reflected in the glass) that
+      // take many samples to average out.
+      const float F = glass->reflectance(wo_l);
+      const Ray refl = spawn_ray(hit.p, hit.n, hit.frame.to_world(reflect_local(wo_l)));
+      const Ray refr = spawn_ray(hit.p, hit.n, hit.frame.to_world(wt));
+      return L + beta * (F * trace_eye(refl, scene, sampler, depth + 1, splits_left - 1) +
+                         (1.0f - F) * trace_eye(refr, scene, sampler, depth + 1, splits_left - 1));
     }
     BsdfSample bs;
     const Vec2 u = sampler.next2d();

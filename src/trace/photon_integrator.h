@@ -47,6 +47,9 @@ class PhotonIntegrator final : public Integrator {
  private:
   Color final_gather(const Scene& scene, const SurfaceHit& hit, const Vec3& wo, Sampler& sampler,
                      std::vector<Neighbour>& scratch) const;
+  // Camera paths split at the first kSplitLevels glass surfaces into reflection and refraction.
+  static constexpr int kSplitLevels = 2;
+  Color trace_eye(const Ray& ray, const Scene& scene, Sampler& sampler, int depth, int splits_left) const;
   void record_aov(const SurfaceHit& hit, const Vec3& wo, float* aov, std::vector<Neighbour>& scratch) const;
   Color indirect_at(const SurfaceHit& hit, const Vec3& wo, std::vector<Neighbour>& scratch) const;
 

@@ -29,6 +29,9 @@ struct RenderStats {
 };
 
 // Deterministic: the image for a scene, integrator and seed is the same for any thread count.
+// Sub-pixel position of sample `sample` of a pixel: a per-pixel rotation of the R2 sequence.
+Vec2 pixel_jitter(uint64_t pixel, uint64_t sample, uint64_t seed);
+
 // With options.aov, `aovs` receives the per-pixel mean of the AOVs: two images, the first
 // holding Sampler::aov[0..1] in red and green, the second aov[2..3].
 Image render_image(const Scene& scene, const Integrator& integrator, const RenderOptions& options,
