@@ -208,7 +208,7 @@ TEST_CASE("cli: Ctrl-C stops a render within a second and keeps the completed pa
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   INFO(r.err << r.out);
   CHECK(r.exit_code == 130);
-  CHECK(seconds < 2.5 + 1.0);
+  CHECK(seconds < 1.5 + 3.0);  // generous for sanitizer builds; unstopped it would run for minutes
   CHECK(r.out.find("interrupted") != std::string::npos);
   const Image img = read_image(dir.file("out.exr"));
   CHECK(img.mean().x > 0.05f);  // the passes completed so far, not a black image
