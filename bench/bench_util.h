@@ -1,6 +1,9 @@
 // Shared set-up for the kernel benchmarks: scenes, ray batches, photon maps.
 #pragma once
+#include <atomic>
 #include <string>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 #include <vector>
 #include "core/scene_loader.h"
 #include "photon/photon_map.h"
@@ -17,6 +20,19 @@ struct RayBatch {
 };
 // Rays from random points around the scene towards random points in it.
 RayBatch make_rays(const Scene& scene, size_t n, bool shadow, uint64_t seed);
+
+// Casts the whole batch in parallel (blocks of 4096 rays) with `cast(ray) -> bool`
+// and returns how many hit.
+template <class Cast>
+size_t count_hits(const RayBatch& batch, Cast cast) {
+  std::atomic<size_t> hits{0};
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, batch.rays.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
+    size_t local = 0;
+    for (size_t i = r.begin(); i != r.end(); ++i) local += cast(batch.rays[i]) ? 1 : 0;
+    hits += local;
+  });
+  return hits;
+}
 
 // Photons from a real photon pass on cornell-spheres (global map), at least n of them.
 const std::vector<Photon>& cornell_photons(size_t n);

@@ -53,37 +53,29 @@ void BM_EmbreeRays(benchmark::State& state) {
   tbb::global_control c(tbb::global_control::max_allowed_parallelism, size_t(state.range(1)));
   size_t hits = 0;
   for (auto _ : state) {
-    std::atomic<size_t> h{0};
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, batch.rays.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
+    hits = count_hits(batch, [&](const Ray& ray) {
       RTCIntersectContext ctx;
       rtcInitIntersectContext(&ctx);
-      size_t local = 0;
-      for (size_t i = r.begin(); i != r.end(); ++i) {
-        const Ray& ray = batch.rays[i];
-        RTCRayHit rh;
-        rh.ray.org_x = ray.origin.x;
-        rh.ray.org_y = ray.origin.y;
-        rh.ray.org_z = ray.origin.z;
-        rh.ray.dir_x = ray.dir.x;
-        rh.ray.dir_y = ray.dir.y;
-        rh.ray.dir_z = ray.dir.z;
-        rh.ray.tnear = 0.0f;
-        rh.ray.tfar = ray.tmax;
-        rh.ray.mask = ~0u;
-        rh.ray.flags = 0;
-        rh.ray.time = 0;
-        if (shadow) {
-          rtcOccluded1(es.scene, &ctx, &rh.ray);
-          local += rh.ray.tfar < 0.0f;
-        } else {
-          rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-          rtcIntersect1(es.scene, &ctx, &rh);
-          local += rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
-        }
+      RTCRayHit rh;
+      rh.ray.org_x = ray.origin.x;
+      rh.ray.org_y = ray.origin.y;
+      rh.ray.org_z = ray.origin.z;
+      rh.ray.dir_x = ray.dir.x;
+      rh.ray.dir_y = ray.dir.y;
+      rh.ray.dir_z = ray.dir.z;
+      rh.ray.tnear = 0.0f;
+      rh.ray.tfar = ray.tmax;
+      rh.ray.mask = ~0u;
+      rh.ray.flags = 0;
+      rh.ray.time = 0;
+      if (shadow) {
+        rtcOccluded1(es.scene, &ctx, &rh.ray);
+        return rh.ray.tfar < 0.0f;
       }
-      h += local;
+      rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+      rtcIntersect1(es.scene, &ctx, &rh);
+      return rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
     });
-    hits = h;
   }
   state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(batch.rays.size()));
   state.counters["hit_fraction"] = double(hits) / double(batch.rays.size());

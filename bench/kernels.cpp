@@ -26,20 +26,11 @@ void BM_Rays(benchmark::State& state) {
   tbb::global_control c(tbb::global_control::max_allowed_parallelism, size_t(state.range(2)));
   size_t hits = 0;
   for (auto _ : state) {
-    std::atomic<size_t> h{0};
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, batch.rays.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
-      size_t local = 0;
-      for (size_t i = r.begin(); i != r.end(); ++i) {
-        if (shadow) {
-          local += scene->occluded(batch.rays[i]);
-        } else {
-          Hit hit;
-          local += scene->bvh().intersect(batch.rays[i], hit);
-        }
-      }
-      h += local;
-    });
-    hits = h;
+    hits = shadow ? count_hits(batch, [&](const Ray& ray) { return scene->occluded(ray); })
+                  : count_hits(batch, [&](const Ray& ray) {
+                      Hit hit;
+                      return scene->bvh().intersect(ray, hit);
+                    });
   }
   state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(batch.rays.size()));
   state.counters["hit_fraction"] = double(hits) / double(batch.rays.size());
