@@ -8,10 +8,12 @@
 namespace caustica {
 namespace {
 
+// photons[offset, offset + count) as nanoflann's dataset.
 struct PhotonCloud {
-  const std::vector<Photon>* photons = nullptr;
-  size_t kdtree_get_point_count() const { return photons->size(); }
-  float kdtree_get_pt(uint32_t i, size_t dim) const { return (*photons)[i].position[int(dim)]; }
+  const Photon* photons = nullptr;
+  size_t count = 0;
+  size_t kdtree_get_point_count() const { return count; }
+  float kdtree_get_pt(uint32_t i, size_t dim) const { return photons[i].position[int(dim)]; }
   template <class B>
   bool kdtree_get_bbox(B&) const { return false; }
 };
@@ -32,9 +34,10 @@ class KnnWithinRadius {
     if (full()) out_.pop_back();
     auto it = out_.end();
     while (it != out_.begin() && (it - 1)->dist2 > dist2) --it;
-    out_.insert(it, Neighbour{index, dist2});
+    out_.insert(it, Neighbour{base + index, dist2});
     return true;
   }
+  uint32_t base = 0;  // first photon of the subtree being searched
 
  private:
   size_t k_;
@@ -51,9 +54,10 @@ class WithinRadius {
   bool full() const { return true; }
   float worstDist() const { return dist2_; }
   bool addPoint(float dist2, uint32_t index) {
-    if (dist2 < dist2_) out_.push_back(Neighbour{index, dist2});
+    if (dist2 < dist2_) out_.push_back(Neighbour{base + index, dist2});
     return true;
   }
+  uint32_t base = 0;
 
  private:
   float dist2_;
@@ -64,9 +68,36 @@ using KdTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<
                                                    PhotonCloud, 3, uint32_t>;
 }  // namespace
 
+// One kd-tree per contiguous part of the Morton-ordered photons. Large maps are cut in two
+// halves (each a compact region, thanks to the ordering) built in parallel: nanoflann 1.4.3
+// builds on one thread. Queries visit the part whose box is nearer first and skip a part
+// whose box lies beyond the current search radius.
 struct PhotonMap::Tree {
-  PhotonCloud cloud;
-  std::unique_ptr<KdTree> index;
+  struct Part {
+    PhotonCloud cloud;
+    uint32_t offset = 0;
+    Bounds bounds;
+    std::unique_ptr<KdTree> index;
+  };
+  std::vector<Part> parts;
+
+  template <class Result>
+  void search(Result& result, const Vec3& p, const nanoflann::SearchParams& params) const {
+    const float q[3] = {p.x, p.y, p.z};
+    auto dist2 = [&](const Part& part) {
+      const Vec3 d = glm::max(glm::max(part.bounds.lo - p, p - part.bounds.hi), Vec3(0.0f));
+      return glm::dot(d, d);
+    };
+    size_t first = 0;
+    for (size_t i = 1; i < parts.size(); ++i)
+      if (dist2(parts[i]) < dist2(parts[first])) first = i;
+    for (size_t n = 0; n < parts.size(); ++n) {
+      const Part& part = parts[(first + n) % parts.size()];
+      if (n > 0 && dist2(part) >= result.worstDist()) continue;
+      result.base = part.offset;
+      part.index->findNeighbors(result, q, params);
+    }
+  }
 };
 
 PhotonMap::PhotonMap() = default;
@@ -110,33 +141,45 @@ void PhotonMap::build(std::vector<Photon> photons, float flux_scale, size_t leaf
   sort_spatially(photons_);
   flux_scale_ = flux_scale;
   tree_ = std::make_unique<Tree>();
-  tree_->cloud.photons = &photons_;
   if (photons_.empty()) return;
-  tree_->index = std::make_unique<KdTree>(3, tree_->cloud, nanoflann::KDTreeSingleIndexAdaptorParams(leaf_size));
-  tree_->index->buildIndex();
+  const size_t parts = photons_.size() >= kSplitThreshold ? 2 : 1;
+  tree_->parts.resize(parts);
+  for (size_t i = 0; i < parts; ++i) {
+    Tree::Part& part = tree_->parts[i];
+    const size_t begin = photons_.size() * i / parts, end = photons_.size() * (i + 1) / parts;
+    part.offset = uint32_t(begin);
+    part.cloud.photons = photons_.data() + begin;
+    part.cloud.count = end - begin;
+    for (size_t k = begin; k < end; ++k) part.bounds.extend(photons_[k].position);
+  }
+  tbb::parallel_for(size_t(0), parts, [&](size_t i) {
+    Tree::Part& part = tree_->parts[i];
+    part.index = std::make_unique<KdTree>(3, part.cloud, nanoflann::KDTreeSingleIndexAdaptorParams(leaf_size));
+    part.index->buildIndex();
+  });
 }
 
 size_t PhotonMap::knn(const Vec3& p, size_t k, float max_radius, std::vector<Neighbour>& out, float eps) const {
   out.clear();
-  if (!tree_ || !tree_->index || k == 0) return 0;
+  if (!tree_ || tree_->parts.empty() || k == 0) return 0;
   KnnWithinRadius result(k, max_radius * max_radius, out);
-  const float q[3] = {p.x, p.y, p.z};
-  tree_->index->findNeighbors(result, q, nanoflann::SearchParams(32, eps));
+  tree_->search(result, p, nanoflann::SearchParams(32, eps));
   return out.size();
 }
 
 size_t PhotonMap::radius_query(const Vec3& p, float radius, std::vector<Neighbour>& out) const {
   out.clear();
-  if (!tree_ || !tree_->index) return 0;
+  if (!tree_ || tree_->parts.empty()) return 0;
   WithinRadius result(radius * radius, out);
-  const float q[3] = {p.x, p.y, p.z};
-  tree_->index->findNeighbors(result, q, nanoflann::SearchParams());
+  tree_->search(result, p, nanoflann::SearchParams());
   return out.size();
 }
 
 size_t PhotonMap::memory_bytes() const {
   size_t bytes = photons_.capacity() * sizeof(Photon);
-  if (tree_ && tree_->index) bytes += tree_->index->usedMemory(*tree_->index);
+  if (tree_) {
+    for (const Tree::Part& part : tree_->parts) bytes += part.index->usedMemory(*part.index);
+  }
   return bytes;
 }
 

@@ -95,3 +95,33 @@ TEST_CASE("photon map: memory stays near 32 bytes a photon", "[photon][kdtree]")
   CHECK(per_photon >= 28.0);  // 24 of record + 4 of index at least
   CHECK(per_photon <= 32.0);  // the target of the photon-mapping issue
 }
+
+TEST_CASE("photon map: a large map (two kd-trees) still matches a brute-force scan", "[photon][kdtree]") {
+  const auto photons = random_photons(PhotonMap::kSplitThreshold + 1000, 23);
+  PhotonMap map;
+  map.build(photons, 1.0f);
+  REQUIRE(map.size() == photons.size());
+  Rng rng(8);
+  std::vector<Neighbour> found;
+  std::vector<std::pair<float, uint32_t>> all(map.size());
+  for (int q = 0; q < 40; ++q) {
+    // Queries near the plane, in the blob, and far outside both halves' boxes.
+    const Vec3 p = q % 4 == 3 ? Vec3(3.0f, rng.next_float(), -2.0f)
+                              : Vec3(rng.next_float(), rng.next_float() * 0.5f + 0.1f, rng.next_float());
+    for (uint32_t i = 0; i < map.size(); ++i) {
+      const Vec3 d = map[i].position - p;
+      all[i] = {glm::dot(d, d), i};
+    }
+    std::partial_sort(all.begin(), all.begin() + 60, all.end());
+    map.knn(p, 50, 10.0f, found);
+    REQUIRE(found.size() == 50);
+    for (size_t j = 0; j < found.size(); ++j) CHECK(found[j].dist2 == Approx(all[j].first).margin(1e-9));
+    const float radius = 0.02f;
+    map.radius_query(p, radius, found);
+    size_t expected = 0;
+    for (const auto& a : all) expected += a.first < radius * radius;
+    CHECK(found.size() == expected);
+    for (const auto& nb : found) CHECK(glm::dot(map[nb.index].position - p, map[nb.index].position - p) < radius * radius);
+  }
+  CHECK(double(map.memory_bytes()) / double(map.size()) <= 32.0);
+}
