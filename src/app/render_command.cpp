@@ -1,6 +1,5 @@
 // `caustica render`.
 #include "app/render_command.h"
-#include <algorithm>
 #include <atomic>
 #include <csignal>
 #include <filesystem>
@@ -8,7 +7,6 @@
 #include <iostream>
 #include <sstream>
 #include <tbb/global_control.h>
-#include <tbb/info.h>
 #include "app/compare_command.h"
 #include "core/json_reader.h"
 #include "core/scene_loader.h"

@@ -16,6 +16,11 @@ struct PendingPhoton {
   int bounces;
 };
 
+// A photon leaves an area light offset from its surface; a point light has no surface.
+Ray emission_ray(const Vec3& origin, const Vec3& normal, const Vec3& dir) {
+  return glm::dot(normal, normal) > 0 ? spawn_ray(origin, normal, dir) : Ray{origin, dir};
+}
+
 struct Aim {
   Vec3 centre;
   float radius;
@@ -40,7 +45,7 @@ class Emitter {
     if (!caustic_) {
       const EmittedPhoton e = light->sample_emission(u_pos, u_dir);
       flux = e.flux / pmf;
-      ray = glm::dot(e.normal, e.normal) > 0 ? spawn_ray(e.origin, e.normal, e.dir) : Ray{e.origin, e.dir};
+      ray = emission_ray(e.origin, e.normal, e.dir);
       return true;
     }
     // Aim at one specular object's bounding sphere, chosen uniformly; the direction density
@@ -56,7 +61,7 @@ class Emitter {
     const Color intensity = light->emitted_towards(normal, dir);
     if (pdf_dir <= 0 || is_black(intensity)) return false;
     flux = intensity / (pdf_pos * pdf_dir * pmf);
-    ray = glm::dot(normal, normal) > 0 ? spawn_ray(origin, normal, dir) : Ray{origin, dir};
+    ray = emission_ray(origin, normal, dir);
     return true;
   }
 
