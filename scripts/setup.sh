@@ -2,7 +2,8 @@
 # Installs the Debian 12 packages Caustica builds with; does nothing when they are all present.
 set -euo pipefail
 packages=(build-essential cmake pkg-config libglm-dev libnanoflann-dev libopenimageio-dev
-          libtbb-dev catch2 nlohmann-json3-dev libcli11-dev libtinyobjloader-dev fonts-dejavu-core)
+          libtbb-dev catch2 nlohmann-json3-dev libcli11-dev libtinyobjloader-dev fonts-dejavu-core
+          openimageio-tools)
 packages+=("$@")
 missing=()
 for p in "${packages[@]}"; do

@@ -3,7 +3,7 @@
 # and runs the whole test suite under it.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bash scripts/setup.sh
+bash scripts/setup.sh chromium
 cmake -S . -B build-sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCAUSTICA_SANITIZE=ON >/dev/null
 cmake --build build-sanitize -j"$(nproc)"
 # Full unwinding on malloc: the suppression below must see the library frame.
