@@ -30,6 +30,7 @@ constexpr PhotonFlag kPhotonFlags[] = {
     {"--gather-rays", "gather_rays", "Final-gather rays per first diffuse hit", false},
     {"--direct-samples", "direct_samples", "Shadow-ray samples per first diffuse hit", false},
     {"--irradiance-stride", "irradiance_stride", "Precompute irradiance at every n-th global photon (0: off)", false},
+    {"--glossy-threshold", "glossy_threshold", "Store photons and gather on glossy lobes at least this rough (alpha)", true},
 };
 constexpr size_t kPhotonFlagCount = sizeof(kPhotonFlags) / sizeof(kPhotonFlags[0]);
 

@@ -28,7 +28,15 @@ bool AreaLight::sample_li(const Vec3& x, const Vec2& u, LightSample& s) const {
   const float cos_l = -glm::dot(s.n, s.wi);
   if (cos_l <= 0.0f) return false;  // back side: no emission
   s.weight = radiance_ * (cos_l * area_ / dist2);  // pdf_A = 1 / area
+  s.pdf = dist2 / (cos_l * area_);
   return true;
+}
+
+float AreaLight::pdf_li(const Vec3& x, const Vec3& y, const Vec3& ny) const {
+  const Vec3 d = y - x;
+  const float dist2 = glm::dot(d, d);
+  const float cos_l = std::abs(glm::dot(ny, d)) / std::sqrt(dist2);
+  return cos_l > 0.0f ? dist2 / (cos_l * area_) : 0.0f;
 }
 
 EmittedPhoton AreaLight::sample_emission(const Vec2& u_pos, const Vec2& u_dir) const {

@@ -14,6 +14,7 @@ struct LightSample {
   Vec3 wi;        // unit direction from the shading point to p
   float dist = 0; // distance to p
   Color weight;   // incident radiance / solid-angle pdf (Le cos_l / (d^2 pdf_A), or I / d^2)
+  float pdf = 0;  // solid-angle density of wi (0 for a delta light), not counting the light's pmf
 };
 
 // A photon leaving a light.
@@ -36,6 +37,9 @@ class Light {
   virtual Color power() const = 0;
   virtual bool is_delta() const = 0;
   virtual Bounds bounds() const = 0;
+  // Solid-angle density with which sample_li from x picks the point y (normal ny) on the light;
+  // 0 for delta lights. For multiple importance sampling of BSDF-sampled hits.
+  virtual float pdf_li(const Vec3& /*x*/, const Vec3& /*y*/, const Vec3& /*ny*/) const { return 0.0f; }
 };
 
 // Any emissive shape: triangles (from a quad or mesh) or a sphere, sampled uniformly by area,
@@ -55,6 +59,7 @@ class AreaLight final : public Light {
   Color power() const override { return kPi * area_ * radiance_; }
   bool is_delta() const override { return false; }
   Bounds bounds() const override;
+  float pdf_li(const Vec3& x, const Vec3& y, const Vec3& ny) const override;
   float area() const { return area_; }
   const Color& radiance() const { return radiance_; }
 

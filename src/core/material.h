@@ -1,32 +1,56 @@
-// Materials: BSDFs evaluated and sampled in the local shading frame (z = surface normal),
-// flagged diffuse (photons are stored there) or delta (mirror, glass), plus emitted radiance.
+// The BSDF interface: evaluated and sampled in the local shading frame (z = surface normal),
+// with lobe flags (diffuse, glossy, specular; reflection, transmission) as pbrt-v4's BxDFFlags,
+// plus the radiance a surface emits. The implementations live in core/bsdf/.
 #pragma once
+#include <cstdint>
 #include <memory>
 #include <string>
 #include "core/math.h"
 
 namespace caustica {
 
+enum BsdfFlags : uint32_t {
+  kBsdfReflection = 1u << 0,
+  kBsdfTransmission = 1u << 1,
+  kBsdfDiffuse = 1u << 2,
+  kBsdfGlossy = 1u << 3,
+  kBsdfSpecular = 1u << 4,  // a delta lobe: eval and pdf are zero, only sample reaches it
+};
+
 struct BsdfSample {
-  Vec3 wi;       // local frame
-  Color weight;  // f * |cos theta_i| / pdf
-  float pdf = 0; // solid-angle density; 0 for a delta lobe
+  Vec3 wi;        // local frame
+  Color weight;   // f * |cos theta_i| / pdf (for a delta lobe: its reflectance or transmittance)
+  float pdf = 0;  // solid-angle density; 0 for a delta lobe
   bool delta = false;
+  uint32_t lobe = 0;  // the flags of the lobe that was sampled
 };
 
 class Material {
  public:
   virtual ~Material() = default;
-  // f(wo, wi) for local directions; zero for delta lobes.
+  // f(wo, wi) for local directions, non-delta lobes only.
   virtual Color eval(const Vec3& wo, const Vec3& wi) const = 0;
+  // Solid-angle density with which sample() picks wi, non-delta lobes only.
   virtual float pdf(const Vec3& wo, const Vec3& wi) const = 0;
   // u: two uniform numbers for the direction, u_lobe: one to choose a lobe.
   virtual bool sample(const Vec3& wo, const Vec2& u, float u_lobe, BsdfSample& s) const = 0;
-  // True for Lambertian surfaces; photons are stored and final gathering happens there.
-  virtual bool is_diffuse() const = 0;
-  bool is_delta() const { return !is_diffuse(); }
-  // Hemispherical reflectance (survival probability for photon Russian roulette).
+  // The union of the lobes' flags.
+  virtual uint32_t flags() const = 0;
+  // The microfacet alpha of the narrowest glossy lobe (0 without one); photon mapping compares
+  // it with its glossy threshold to decide whether photons are stored on the surface.
+  virtual float glossy_roughness() const { return 0.0f; }
+  // Hemispherical reflectance at normal incidence, or an estimate of it; exact for diffuse.
   virtual Color albedo() const = 0;
+  // The delta lobes seen from wo, each with its weight (at most two: reflection and
+  // refraction), or for a purely glossy BSDF its smooth limit. Lets an integrator follow both
+  // branches instead of choosing one at random (and Whitted treat glossy as specular).
+  virtual int specular_lobes(const Vec3& /*wo*/, BsdfSample* /*out*/) const { return 0; }
+
+  bool has(uint32_t flag) const { return (flags() & flag) != 0; }
+  // Only delta lobes: no direction can be evaluated, only sampled.
+  bool is_specular() const { return (flags() & (kBsdfDiffuse | kBsdfGlossy)) == 0; }
+  // A single diffuse reflection lobe: f = albedo / pi everywhere.
+  bool is_lambertian() const { return flags() == (kBsdfDiffuse | kBsdfReflection); }
 
   Color emission{0.0f};  // radiance leaving the front side (along the normal)
   bool is_emissive() const { return !is_black(emission); }
@@ -34,59 +58,25 @@ class Material {
   Color emitted(const Vec3& wo_local) const { return wo_local.z > 0 ? emission : Color(0.0f); }
 };
 
-class Lambertian final : public Material {
+// A BSDF with delta lobes only (mirrors, smooth glass): nothing to evaluate; sample() picks
+// one of specular_lobes() in proportion to its weight (at most two, whose weights sum to 1 or
+// less), and the sample carries the rest of the weight.
+class SpecularMaterial : public Material {
  public:
-  explicit Lambertian(const Color& albedo) : albedo_(albedo) {}
-  Color eval(const Vec3& wo, const Vec3& wi) const override;  // rho / pi, two-sided
-  float pdf(const Vec3& wo, const Vec3& wi) const override;
-  bool sample(const Vec3& wo, const Vec2& u, float u_lobe, BsdfSample& s) const override;
-  bool is_diffuse() const override { return true; }
-  Color albedo() const override { return albedo_; }
-
- private:
-  Color albedo_;
+  Color eval(const Vec3&, const Vec3&) const final { return Color(0.0f); }
+  float pdf(const Vec3&, const Vec3&) const final { return 0.0f; }
+  bool sample(const Vec3& wo, const Vec2& u, float u_lobe, BsdfSample& s) const final;
 };
 
-class Mirror final : public Material {
- public:
-  explicit Mirror(const Color& reflectance) : reflectance_(reflectance) {}
-  Color eval(const Vec3&, const Vec3&) const override { return Color(0.0f); }
-  float pdf(const Vec3&, const Vec3&) const override { return 0.0f; }
-  bool sample(const Vec3& wo, const Vec2& u, float u_lobe, BsdfSample& s) const override;
-  bool is_diffuse() const override { return false; }
-  Color albedo() const override { return reflectance_; }
-
- private:
-  Color reflectance_;
-};
-
-enum class FresnelModel { Exact, Schlick };
-
-// Unpolarised Fresnel reflectance of a dielectric boundary. cos_i > 0 is measured on the
-// incident side; eta = n_transmitted / n_incident. Returns 1 under total internal reflection.
-float fresnel_dielectric(float cos_i, float eta);
-float fresnel_schlick(float cos_i, float eta);
-
-// Smooth glass: Fresnel chooses reflection or refraction (Snell's law).
-class Glass final : public Material {
- public:
-  Glass(float ior, FresnelModel model) : ior_(ior), model_(model) {}
-  Color eval(const Vec3&, const Vec3&) const override { return Color(0.0f); }
-  float pdf(const Vec3&, const Vec3&) const override { return 0.0f; }
-  bool sample(const Vec3& wo, const Vec2& u, float u_lobe, BsdfSample& s) const override;
-  bool is_diffuse() const override { return false; }
-  Color albedo() const override { return Color(1.0f); }
-  // Reflectance for local direction wo (either side of the boundary).
-  float reflectance(const Vec3& wo) const;
-  // Refracted local direction for wo; false under total internal reflection.
-  bool refract(const Vec3& wo, Vec3& wt) const;
-  float ior() const { return ior_; }
-
- private:
-  float ior_;
-  FresnelModel model_;
-};
+// Photon mapping's rule for where photons are stored and where the eye path stops to gather:
+// a diffuse lobe, or a glossy lobe at least `glossy_threshold` rough (microfacet alpha).
+inline bool is_gather_surface(const Material& m, float glossy_threshold) {
+  const uint32_t f = m.flags();
+  return (f & kBsdfDiffuse) != 0 || ((f & kBsdfGlossy) != 0 && m.glossy_roughness() >= glossy_threshold);
+}
 
 inline Vec3 reflect_local(const Vec3& wo) { return Vec3(-wo.x, -wo.y, wo.z); }
+// Mirror reflection of wo about the unit vector m.
+inline Vec3 reflect(const Vec3& wo, const Vec3& m) { return 2.0f * glm::dot(wo, m) * m - wo; }
 
 }  // namespace caustica

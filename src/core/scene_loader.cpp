@@ -5,6 +5,7 @@
 #include <map>
 #include <sstream>
 #include <tiny_obj_loader.h>
+#include "core/bsdf/bsdf_reader.h"
 #include "core/json_reader.h"
 
 namespace caustica {
@@ -88,34 +89,11 @@ struct Loader {
       const std::string mp = child(p, it.key());
       const json& m = it.value();
       if (!m.is_object()) r.fail(mp, "expected an object");
-      const std::string type = r.string(r.require(m, mp, "type"), child(mp, "type"));
-      std::unique_ptr<Material> mat;
-      if (type == "diffuse") {
-        r.check_object(m, mp, {"type", "albedo", "emission"});
-        const Color albedo = m.contains("albedo") ? r.color(m["albedo"], child(mp, "albedo")) : Color(0.8f);
-        if (max_component(albedo) > 1.0f) {
-          r.warn(child(mp, "albedo"), "albedo above 1 reflects more than it receives (energy is created)",
-                 out.warnings);
-        }
-        mat = std::make_unique<Lambertian>(albedo);
-        if (m.contains("emission")) mat->emission = r.color(m["emission"], child(mp, "emission"));
-      } else if (type == "mirror") {
-        r.check_object(m, mp, {"type", "reflectance"});
-        const Color refl = m.contains("reflectance") ? r.color(m["reflectance"], child(mp, "reflectance")) : Color(1.0f);
-        mat = std::make_unique<Mirror>(refl);
-      } else if (type == "glass") {
-        r.check_object(m, mp, {"type", "ior", "fresnel"});
-        const float ior = m.contains("ior") ? float(r.number(m["ior"], child(mp, "ior"))) : 1.5f;
-        if (!(ior > 0.0f)) r.fail(child(mp, "ior"), "index of refraction must be positive");
-        FresnelModel model = FresnelModel::Exact;
-        if (m.contains("fresnel")) {
-          const std::string f = r.string(m["fresnel"], child(mp, "fresnel"));
-          if (f == "schlick") model = FresnelModel::Schlick;
-          else if (f != "exact") r.fail(child(mp, "fresnel"), "unknown Fresnel model \"" + f + "\" (known: exact, schlick)");
-        }
-        mat = std::make_unique<Glass>(ior, model);
-      } else {
-        r.fail(child(mp, "type"), "unknown material type \"" + type + "\" (known: diffuse, mirror, glass)");
+      std::vector<std::unique_ptr<Material>> nested;
+      std::unique_ptr<Material> mat = read_material(r, m, mp, nested, out.warnings);
+      for (auto& n : nested) {
+        scene().materials.push_back(std::move(n));
+        scene().material_names.push_back(it.key() + " (nested)");
       }
       material_ids[it.key()] = static_cast<uint32_t>(scene().materials.size());
       scene().materials.push_back(std::move(mat));

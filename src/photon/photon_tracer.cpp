@@ -28,9 +28,9 @@ struct Aim {
 
 class Emitter {
  public:
-  Emitter(const Scene& scene, bool caustic) : scene_(scene), caustic_(caustic) {
+  Emitter(const Scene& scene, bool caustic, float glossy_threshold) : scene_(scene), caustic_(caustic) {
     for (const ObjectInfo& o : scene.objects) {
-      if (scene.materials[o.material]->is_delta()) targets_.push_back({o.centre, o.radius});
+      if (!is_gather_surface(*scene.materials[o.material], glossy_threshold)) targets_.push_back({o.centre, o.radius});
     }
   }
   bool has_targets() const { return !targets_.empty(); }
@@ -90,8 +90,9 @@ class Emitter {
 };
 
 // Follows one photon; appends what it stores to `out`.
-void trace_photon(const Scene& scene, Ray ray, Color flux, bool caustic, int max_depth, Rng& rng,
+void trace_photon(const Scene& scene, Ray ray, Color flux, bool caustic, const PhotonPassSettings& s, Rng& rng,
                   std::vector<PendingPhoton>& out) {
+  const int max_depth = s.max_depth;
   int specular_bounces = 0;
   for (int depth = 0; depth < max_depth; ++depth) {
     SurfaceHit hit;
@@ -99,7 +100,8 @@ void trace_photon(const Scene& scene, Ray ray, Color flux, bool caustic, int max
     const Vec3 wo = -ray.dir;
     const Vec3 wo_l = hit.frame.to_local(wo);
     const Material& m = *hit.material;
-    if (m.is_diffuse()) {
+    const bool gather = is_gather_surface(m, s.glossy_threshold);
+    if (gather) {
       const Vec3 n_side = wo_l.z >= 0 ? hit.n : -hit.n;
       if (caustic) {
         if (specular_bounces > 0) out.push_back({hit.p, flux, wo, n_side, depth});
@@ -110,9 +112,10 @@ void trace_photon(const Scene& scene, Ray ray, Color flux, bool caustic, int max
     BsdfSample bs;
     const Vec2 u(rng.next_float(), rng.next_float());
     if (!m.sample(wo_l, u, rng.next_float(), bs)) return;
-    if (m.is_diffuse()) {
-      // Russian roulette with the albedo as survival probability (Jensen 2001, sec. 5.3).
-      const float survive = std::min(1.0f, max_component(m.albedo()));
+    if (gather) {
+      // Russian roulette with the sampled reflectance as survival probability (for a diffuse
+      // surface its albedo, as in Jensen 2001, sec. 5.3): the flux keeps its magnitude.
+      const float survive = std::min(1.0f, max_component(bs.weight));
       if (survive <= 0 || rng.next_float() >= survive) return;
       flux *= bs.weight / survive;
     } else {
@@ -131,7 +134,7 @@ std::vector<Photon> run_map(const Scene& scene, const PhotonPassSettings& s, boo
   emitted_out = 0;
   const size_t wanted = caustic ? s.caustic_photons : s.global_photons;
   if (wanted == 0 || scene.lights.empty()) return result;
-  const Emitter emitter(scene, caustic);
+  const Emitter emitter(scene, caustic, s.glossy_threshold);
   if (caustic && !emitter.has_targets()) return result;
   // Cap on emission, so a scene that stores (almost) nothing still ends.
   const uint64_t cap = uint64_t(wanted) * (caustic ? 200 : 50) + 1000000;
@@ -157,7 +160,7 @@ std::vector<Photon> run_map(const Scene& scene, const PhotonPassSettings& s, boo
         const size_t before = out.size();
         Ray ray;
         Color flux;
-        if (emitter.emit(rng, ray, flux)) trace_photon(scene, ray, flux, caustic, s.max_depth, rng, out);
+        if (emitter.emit(rng, ray, flux)) trace_photon(scene, ray, flux, caustic, s, rng, out);
         counts.push_back(uint32_t(out.size() - before));
       }
     });

@@ -12,6 +12,7 @@ struct PhotonPassSettings {
   size_t global_photons = 200000;   // stored photons wanted in the global map
   size_t caustic_photons = 200000;  // stored photons wanted in the caustic map (0: no caustic map)
   int max_depth = 16;               // bounces per photon path
+  float glossy_threshold = 0.3f;    // photons are stored on glossy lobes at least this rough
   uint64_t seed = 0;
   const std::atomic<bool>* cancel = nullptr;
 };
@@ -25,9 +26,11 @@ struct PhotonPassResult {
 };
 
 // Global map: photons emitted in proportion to light power (area lights: uniform point,
-// cosine direction; point lights: uniform sphere), stored at every diffuse hit, Russian
-// roulette by albedo. Caustic map: a separate emission aimed at the bounding spheres of the
-// specular objects, stored only at the first diffuse hit of an L S+ D path.
+// cosine direction; point lights: uniform sphere), stored at every gather surface (a diffuse
+// lobe, or a glossy one at least glossy_threshold rough: is_gather_surface), Russian roulette
+// by the sampled reflectance there. Caustic map: a separate emission aimed at the bounding
+// spheres of the other (specular and near-specular) objects, stored only at the first gather
+// surface of an L S+ D path.
 // Emission continues until the wanted counts are stored (or a cap is reached, with a warning).
 // Photon i is seeded from hash(i, seed): the maps are the same for any thread count.
 PhotonPassResult trace_photons(const Scene& scene, const PhotonPassSettings& settings);

@@ -3,7 +3,7 @@
 
 namespace caustica {
 
-Color estimate_direct(const Scene& scene, const SurfaceHit& hit, const Vec3& wo, Sampler& sampler) {
+Color estimate_direct(const Scene& scene, const SurfaceHit& hit, const Vec3& wo, Sampler& sampler, bool mis) {
   float pmf = 0.0f;
   const Light* light = scene.sample_light(sampler.next1d(), pmf);
   const Vec2 u = sampler.next2d();
@@ -15,7 +15,9 @@ Color estimate_direct(const Scene& scene, const SurfaceHit& hit, const Vec3& wo,
   if (is_black(f)) return Color(0.0f);
   ++sampler.rays;
   if (scene.occluded(spawn_ray_to(hit.p, hit.n, ls.p, ls.n))) return Color(0.0f);
-  return f * ls.weight * (std::abs(wi_l.z) / pmf);
+  float w = 1.0f;
+  if (mis && ls.pdf > 0.0f) w = mis_weight(pmf * ls.pdf, hit.material->pdf(wo_l, wi_l));
+  return f * ls.weight * (w * std::abs(wi_l.z) / pmf);
 }
 
 }  // namespace caustica

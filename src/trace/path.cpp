@@ -1,5 +1,6 @@
-// Path tracing with next-event estimation (no MIS): emission is counted when seen by the
-// camera or through delta bounces; after a diffuse bounce it came from the shadow ray.
+// Path tracing with next-event estimation and multiple importance sampling (power heuristic):
+// at every vertex with a non-delta lobe, a shadow ray to one light, and emission reached by the
+// BSDF sample weighted against it; after a delta bounce emission counts fully.
 #include "trace/path.h"
 #include <sstream>
 #include "trace/direct.h"
@@ -18,7 +19,9 @@ PathIntegrator::PathIntegrator(const JsonSource& settings, const RenderSettings&
 Color PathIntegrator::Li(const Ray& camera_ray, const Scene& scene, Sampler& sampler) const {
   Color L(0.0f), beta(1.0f);
   Ray ray = camera_ray;
-  bool count_emission = true;
+  bool specular_bounce = true;  // the camera ray counts emission fully, as a delta bounce does
+  float bsdf_pdf = 0.0f;        // solid-angle density of the last BSDF sample
+  Vec3 prev_p(0.0f);
   for (int depth = 0; depth < settings_.max_depth; ++depth) {
     SurfaceHit hit;
     ++sampler.rays;
@@ -26,13 +29,28 @@ Color PathIntegrator::Li(const Ray& camera_ray, const Scene& scene, Sampler& sam
     const Vec3 wo = -ray.dir;
     const Vec3 wo_l = hit.frame.to_local(wo);
     const Material& m = *hit.material;
-    if (count_emission) L += beta * m.emitted(wo_l);
-    if (m.is_diffuse()) L += beta * estimate_direct(scene, hit, wo, sampler);
+    const Color Le = m.emitted(wo_l);
+    if (!is_black(Le)) {
+      if (specular_bounce || hit.light < 0) {
+        L += beta * Le;
+      } else {
+        // Reached by BSDF sampling: weighted against next-event estimation of the same light.
+        const float light_pdf = scene.light_pmf(size_t(hit.light)) *
+                                scene.lights[size_t(hit.light)]->pdf_li(prev_p, hit.p, hit.n);
+        L += beta * Le * mis_weight(bsdf_pdf, light_pdf);
+      }
+    }
+    // On the last vertex no BSDF sample follows to share the light with: no MIS weight there.
+    const bool last = depth + 1 >= settings_.max_depth;
+    if (!m.is_specular()) L += beta * estimate_direct(scene, hit, wo, sampler, !last);
+    if (last) break;
     BsdfSample bs;
     const Vec2 u = sampler.next2d();
     if (!m.sample(wo_l, u, sampler.next1d(), bs)) break;
     beta *= bs.weight;
-    count_emission = bs.delta;
+    specular_bounce = bs.delta;
+    bsdf_pdf = bs.pdf;
+    prev_p = hit.p;
     if (depth + 1 >= settings_.rr_depth) {
       const float survive = std::min(1.0f, max_component(beta));
       if (survive <= 0.0f || sampler.next1d() >= survive) break;

@@ -22,9 +22,11 @@ PhotonSettings PhotonSettings::read(const JsonSource& src, const RenderSettings&
   const auto& v = src.value;
   if (final_gather) {
     r.check_object(v, src.pointer, {"photons", "caustic_photons", "global_k", "caustic_k", "global_radius",
-                                    "caustic_radius", "gather_rays", "direct_samples", "irradiance_stride"});
+                                    "caustic_radius", "gather_rays", "direct_samples", "irradiance_stride",
+                                    "glossy_threshold"});
   } else {
-    r.check_object(v, src.pointer, {"photons", "caustic_photons", "global_k", "caustic_k", "global_radius", "caustic_radius"});
+    r.check_object(v, src.pointer, {"photons", "caustic_photons", "global_k", "caustic_k", "global_radius",
+                                    "caustic_radius", "glossy_threshold"});
   }
   PhotonSettings s;
   s.max_depth = render.max_depth;
@@ -43,6 +45,7 @@ PhotonSettings PhotonSettings::read(const JsonSource& src, const RenderSettings&
   integer("gather_rays", s.gather_rays, 0, 1 << 16);
   integer("direct_samples", s.direct_samples, 1, 1 << 16);
   integer("irradiance_stride", s.irradiance_stride, 0, 1 << 20);
+  number("glossy_threshold", s.glossy_threshold);
   return s;
 }
 
@@ -69,6 +72,7 @@ void PhotonIntegrator::preprocess(const Scene& scene, const PreprocessContext& c
   pass.global_photons = settings_.photons;
   pass.caustic_photons = final_gather_ ? settings_.caustic_photons : 0;
   pass.max_depth = settings_.max_depth;
+  pass.glossy_threshold = settings_.glossy_threshold;
   pass.seed = context.seed;
   pass.cancel = context.cancel;
   check_memory(pass.global_photons + pass.caustic_photons);
@@ -112,7 +116,7 @@ void PhotonIntegrator::preprocess(const Scene& scene, const PreprocessContext& c
 
 Color PhotonIntegrator::indirect_at(const SurfaceHit& hit, const Vec3& wo, std::vector<Neighbour>& scratch) const {
   const Vec3 n_side = glm::dot(wo, hit.n) >= 0 ? hit.n : -hit.n;
-  if (irradiance_.size() > 0) {
+  if (irradiance_.size() > 0 && hit.material->is_lambertian()) {
     Color E;
     if (irradiance_.lookup(hit.p, n_side, global_est_.max_radius, E, scratch)) return hit.material->albedo() * kInvPi * E;
   }
@@ -139,7 +143,7 @@ Color PhotonIntegrator::final_gather(const Scene& scene, const SurfaceHit& hit, 
       ++sampler.rays;
       if (!scene.intersect(ray, g)) break;
       const Material& m = *g.material;
-      if (m.is_diffuse()) {
+      if (is_gather_surface(m, settings_.glossy_threshold)) {
         // Emission reached by a gather ray is not counted: direct light already was.
         sum += throughput * indirect_at(g, -ray.dir, scratch);
         break;
@@ -182,8 +186,8 @@ Color PhotonIntegrator::trace_eye(const Ray& start, const Scene& scene, Sampler&
     const Vec3 wo = -ray.dir;
     const Vec3 wo_l = hit.frame.to_local(wo);
     const Material& m = *hit.material;
-    L += beta * m.emitted(wo_l);  // seen directly or through mirrors and glass only
-    if (m.is_diffuse()) {
+    L += beta * m.emitted(wo_l);  // seen directly or through specular and near-specular surfaces
+    if (is_gather_surface(m, settings_.glossy_threshold)) {
       if (sampler.aov) record_aov(hit, wo, sampler.aov, scratch);
       if (!final_gather_) return L + beta * radiance_estimate(global_, hit.p, hit.n, wo, m, global_est_, scratch);
       Color direct(0.0f);
@@ -193,17 +197,18 @@ Color PhotonIntegrator::trace_eye(const Ray& start, const Scene& scene, Sampler&
       L += beta * final_gather(scene, hit, wo, sampler, scratch);
       return L;
     }
-    const auto* glass = dynamic_cast<const Glass*>(&m);
-    Vec3 wt;
-    if (glass && splits_left > 0 && glass->refract(wo_l, wt)) {
+    BsdfSample lobes[2];
+    if (splits_left > 0 && m.is_specular() && m.specular_lobes(wo_l, lobes) == 2) {
       // Follow both reflection and refraction, weighted by Fresnel, instead of choosing one
       // at random: choosing leaves bright speckles (the light reflected in the glass) that
       // take many samples to average out.
-      const float F = glass->reflectance(wo_l);
-      const Ray refl = spawn_ray(hit.p, hit.n, hit.frame.to_world(reflect_local(wo_l)));
-      const Ray refr = spawn_ray(hit.p, hit.n, hit.frame.to_world(wt));
-      return L + beta * (F * trace_eye(refl, scene, sampler, depth + 1, splits_left - 1) +
-                         (1.0f - F) * trace_eye(refr, scene, sampler, depth + 1, splits_left - 1));
+      Color split(0.0f);
+      for (const BsdfSample& lobe : lobes) {
+        if (is_black(lobe.weight)) continue;
+        const Ray next = spawn_ray(hit.p, hit.n, hit.frame.to_world(lobe.wi));
+        split += lobe.weight * trace_eye(next, scene, sampler, depth + 1, splits_left - 1);
+      }
+      return L + beta * split;
     }
     BsdfSample bs;
     const Vec2 u = sampler.next2d();

@@ -16,6 +16,9 @@ struct PhotonSettings {
   int gather_rays = 12;      // final-gather rays per first diffuse hit (tuned at equal time, BENCHMARKS.md)
   int direct_samples = 4;    // shadow-ray samples per first diffuse hit
   int irradiance_stride = 4; // precompute irradiance at every n-th global photon; 0: off
+  // Photons are stored, and eye paths stop to gather, on a diffuse lobe or a glossy lobe at
+  // least this rough (microfacet alpha); smoother glossy surfaces are traced through.
+  float glossy_threshold = 0.3f;
   int max_depth = 16;        // from the render block
 
   // Reads and validates the integrator block; unknown keys are errors.

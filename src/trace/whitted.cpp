@@ -20,21 +20,18 @@ Color WhittedIntegrator::trace(const Ray& ray, const Scene& scene, Sampler& samp
   const Vec3 wo_l = hit.frame.to_local(wo);
   const Material& m = *hit.material;
   Color L = m.emitted(wo_l);
-  if (m.is_diffuse()) return L + estimate_direct(scene, hit, wo, sampler);
+  if (m.has(kBsdfDiffuse)) return L + estimate_direct(scene, hit, wo, sampler);
   if (depth + 1 >= max_depth_) return L;
-  const Vec3 refl = hit.frame.to_world(reflect_local(wo_l));
-  if (const auto* glass = dynamic_cast<const Glass*>(&m)) {
-    // Follow both branches, weighted by Fresnel, as Whitted (1980) did.
-    const float F = glass->reflectance(wo_l);
-    Vec3 wt;
-    if (F < 1.0f && glass->refract(wo_l, wt)) {
-      const Vec3 t = hit.frame.to_world(wt);
-      L += (1.0f - F) * trace(spawn_ray(hit.p, hit.n, t), scene, sampler, depth + 1);
-    }
-    if (F > 0.0f) L += F * trace(spawn_ray(hit.p, hit.n, refl), scene, sampler, depth + 1);
-    return L;
+  // Mirrors and glass, and glossy lobes in their specular limit: follow every branch,
+  // weighted by Fresnel, as Whitted (1980) did.
+  BsdfSample lobes[2];
+  const int n = m.specular_lobes(wo_l, lobes);
+  for (int i = 0; i < n; ++i) {
+    if (is_black(lobes[i].weight)) continue;
+    const Ray next = spawn_ray(hit.p, hit.n, hit.frame.to_world(lobes[i].wi));
+    L += lobes[i].weight * trace(next, scene, sampler, depth + 1);
   }
-  return L + m.albedo() * trace(spawn_ray(hit.p, hit.n, refl), scene, sampler, depth + 1);
+  return L;
 }
 
 Color WhittedIntegrator::Li(const Ray& ray, const Scene& scene, Sampler& sampler) const {

@@ -2,7 +2,9 @@
 // and textbook values.
 #include <catch2/catch.hpp>
 #include <cmath>
-#include "core/material.h"
+#include "core/bsdf/conductor.h"
+#include "core/bsdf/dielectric.h"
+#include "core/bsdf/diffuse.h"
 #include "core/rng.h"
 #include "core/sampling.h"
 
@@ -98,12 +100,13 @@ TEST_CASE("fresnel_schlick: R0 at normal incidence, close to exact at 30 degrees
   CHECK(fresnel_schlick(float(std::cos(45 * kDeg)), 1.0f / 1.5f) == 1.0f);  // total internal reflection
 }
 
-TEST_CASE("Glass::sample: reflection fraction is the Fresnel reflectance, refraction obeys Snell", "[core][material]") {
+TEST_CASE("Dielectric::sample: reflection fraction is the Fresnel reflectance, refraction obeys Snell", "[core][material]") {
   const float ior = 1.5f;
   const int n = 200000;
   for (const FresnelModel model : {FresnelModel::Exact, FresnelModel::Schlick}) {
-    const Glass glass(ior, model);
-    CHECK(glass.is_delta());
+    const Dielectric glass(ior, model);
+    CHECK(glass.is_specular());
+    CHECK(glass.flags() == (kBsdfSpecular | kBsdfReflection | kBsdfTransmission));
     for (const bool inside : {false, true}) {
       for (const double deg : {0.0, 20.0, 45.0, 70.0, 85.0}) {
         const Vec3 wo = direction(deg * kDeg, 0.7, inside);
@@ -161,8 +164,8 @@ TEST_CASE("Glass::sample: reflection fraction is the Fresnel reflectance, refrac
   }
 }
 
-TEST_CASE("Glass: total internal reflection always reflects", "[core][material]") {
-  const Glass glass(1.5f, FresnelModel::Exact);
+TEST_CASE("Dielectric: total internal reflection always reflects", "[core][material]") {
+  const Dielectric glass(1.5f, FresnelModel::Exact);
   const Vec3 wo = direction(60 * kDeg, 1.3, /*below=*/true);
   Vec3 wt;
   CHECK_FALSE(glass.refract(wo, wt));
@@ -178,10 +181,10 @@ TEST_CASE("Glass: total internal reflection always reflects", "[core][material]"
   CHECK(is_black(glass.eval(Vec3(0, 0, 1), Vec3(0, 0, 1))));
 }
 
-TEST_CASE("Mirror reflects about the normal with weight = reflectance", "[core][material]") {
+TEST_CASE("Conductor without an index (mirror) reflects about the normal with weight = reflectance", "[core][material]") {
   const Color refl(0.9f, 0.5f, 0.1f);
-  const Mirror mirror(refl);
-  CHECK(mirror.is_delta());
+  const Conductor mirror(ConductorIor{}, refl);
+  CHECK(mirror.is_specular());
   CHECK(mirror.albedo() == refl);
   Rng rng(9);
   for (int k = 0; k < 1000; ++k) {

@@ -2,7 +2,7 @@
 // their densities, plus checks of the chi-square helper itself (it must be able to reject).
 #include <catch2/catch.hpp>
 #include <functional>
-#include "core/material.h"
+#include "core/bsdf/diffuse.h"
 #include "core/rng.h"
 #include "core/sampling.h"
 #include "support/chi2.h"
@@ -244,7 +244,8 @@ TEST_CASE("Lambertian::eval is albedo/pi on the same side and 0 across", "[core]
     REQUIRE(lam.pdf(a_below, b_below) == Approx(b.z / test::kPi64).epsilon(1e-6));
     REQUIRE(lam.pdf(a, b_below) == 0.0f);
   }
-  CHECK(lam.is_diffuse());
+  CHECK(lam.is_lambertian());
+  CHECK_FALSE(lam.is_specular());
   CHECK(lam.albedo() == albedo);
 }
 

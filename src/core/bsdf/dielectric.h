@@ -1,0 +1,63 @@
+// Dielectrics: the smooth `dielectric` (our `glass`), `thindielectric` (a thin pane: no
+// refraction, inter-reflections summed) and the microfacet `roughdielectric` (Walter et al.
+// 2007). eta is the interior index over the exterior one; the normal points outside. Radiance
+// crossing the boundary is not scaled by eta^2, in every integrator alike.
+#pragma once
+#include "core/bsdf/fresnel.h"
+#include "core/bsdf/microfacet.h"
+#include "core/material.h"
+
+namespace caustica {
+
+class Dielectric final : public SpecularMaterial {
+ public:
+  Dielectric(float eta, FresnelModel model) : eta_(eta), model_(model) {}
+  int specular_lobes(const Vec3& wo, BsdfSample* out) const override;
+  uint32_t flags() const override { return kBsdfSpecular | kBsdfReflection | kBsdfTransmission; }
+  Color albedo() const override { return Color(1.0f); }
+  // Reflectance for local direction wo (either side of the boundary).
+  float reflectance(const Vec3& wo) const;
+  // Refracted local direction for wo; false under total internal reflection.
+  bool refract(const Vec3& wo, Vec3& wt) const;
+  float eta() const { return eta_; }
+
+ private:
+  float eta_;
+  FresnelModel model_;
+};
+
+class ThinDielectric final : public SpecularMaterial {
+ public:
+  explicit ThinDielectric(float eta) : eta_(eta) {}
+  int specular_lobes(const Vec3& wo, BsdfSample* out) const override;
+  uint32_t flags() const override { return kBsdfSpecular | kBsdfReflection | kBsdfTransmission; }
+  Color albedo() const override { return Color(1.0f); }
+  // Reflectance of the pane with all internal reflections: R + T^2 R / (1 - R^2) = 2R / (1 + R).
+  float reflectance(float cos_i) const;
+
+ private:
+  float eta_;
+};
+
+class RoughDielectric final : public Material {
+ public:
+  RoughDielectric(const MicrofacetDistribution& dist, float eta) : dist_(dist), eta_(eta) {}
+  Color eval(const Vec3& wo, const Vec3& wi) const override;
+  float pdf(const Vec3& wo, const Vec3& wi) const override;
+  bool sample(const Vec3& wo, const Vec2& u, float u_lobe, BsdfSample& s) const override;
+  int specular_lobes(const Vec3& wo, BsdfSample* out) const override {  // the smooth limit
+    return Dielectric(eta_, FresnelModel::Exact).specular_lobes(wo, out);
+  }
+  uint32_t flags() const override { return kBsdfGlossy | kBsdfReflection | kBsdfTransmission; }
+  float glossy_roughness() const override { return std::min(dist_.alpha_u(), dist_.alpha_v()); }
+  Color albedo() const override { return Color(1.0f); }
+
+ private:
+  // The half vector of (wo, wi), facing +z, and the relative index across it; false when the
+  // pair cannot be connected by a microfacet.
+  bool half_vector(const Vec3& wo, const Vec3& wi, Vec3& wm, float& etap) const;
+  MicrofacetDistribution dist_;
+  float eta_;
+};
+
+}  // namespace caustica

@@ -1,0 +1,24 @@
+// Lambertian reflection (Mitsuba's `diffuse`), two-sided.
+#pragma once
+#include "core/material.h"
+
+namespace caustica {
+
+class Lambertian final : public Material {
+ public:
+  explicit Lambertian(const Color& albedo) : albedo_(albedo) {}
+  Color eval(const Vec3& wo, const Vec3& wi) const override;  // rho / pi on wo's side
+  float pdf(const Vec3& wo, const Vec3& wi) const override;
+  bool sample(const Vec3& wo, const Vec2& u, float u_lobe, BsdfSample& s) const override;
+  uint32_t flags() const override { return kBsdfDiffuse | kBsdfReflection; }
+  Color albedo() const override { return albedo_; }
+
+ private:
+  Color albedo_;
+};
+
+// Caustica's reflecting BSDFs are two-sided: seen from below, they are evaluated mirrored
+// into the upper hemisphere (Mitsuba's are black from below unless wrapped in `twosided`).
+inline Vec3 flip_z(const Vec3& w) { return Vec3(w.x, w.y, -w.z); }
+
+}  // namespace caustica

@@ -1,0 +1,25 @@
+// The normalised modified Phong BRDF (Lafortune and Willems 1994; Mitsuba 0.6's `phong`):
+// f = kd / pi + ks (n + 2) / (2 pi) cos^n(alpha), alpha between wi and wo's mirror direction.
+#pragma once
+#include "core/material.h"
+
+namespace caustica {
+
+class Phong final : public Material {
+ public:
+  Phong(const Color& diffuse, const Color& specular, float exponent);
+  Color eval(const Vec3& wo, const Vec3& wi) const override;
+  float pdf(const Vec3& wo, const Vec3& wi) const override;
+  bool sample(const Vec3& wo, const Vec2& u, float u_lobe, BsdfSample& s) const override;
+  uint32_t flags() const override;
+  // The Beckmann alpha of equal highlight width, sqrt(2 / (n + 2)) (Walter et al. 2007, eq. 33).
+  float glossy_roughness() const override { return std::sqrt(2.0f / (exponent_ + 2.0f)); }
+  Color albedo() const override { return kd_ + ks_; }
+
+ private:
+  Color kd_, ks_;
+  float exponent_;
+  float p_specular_;  // probability of sampling the specular lobe
+};
+
+}  // namespace caustica
