@@ -54,6 +54,37 @@ TEST_CASE("photon: matches the path tracer on the Cornell box (mean 3 %, 4x4 reg
   }
 }
 
+// photon against a high-spp path render of a scene file: mean within 3 %, each region of a
+// 4x4 grid within 6 %.
+static void check_photon_against_path(const char* file, int width, int height) {
+  const std::string scene = test::read_scene_file(file);
+  const auto ref = render_text(scene, "path", "{}", 4096, width, height, 3);
+  const auto pm = render_text(scene, "photon", R"({"gather_rays": 16})", 32, width, height, 4);
+  const glm::dvec3 ref_mean = region_mean(ref.image, 0, 0, width, height);
+  const glm::dvec3 pm_mean = region_mean(pm.image, 0, 0, width, height);
+  INFO(file << ": path " << ref_mean.x << " " << ref_mean.y << " " << ref_mean.z << "; photon " << pm_mean.x << " "
+            << pm_mean.y << " " << pm_mean.z);
+  for (int c = 0; c < 3; ++c) CHECK(pm_mean[c] == Approx(ref_mean[c]).epsilon(0.03));
+  const int cw = width / 4, ch = height / 4;
+  for (int gy = 0; gy < 4; ++gy) {
+    for (int gx = 0; gx < 4; ++gx) {
+      const glm::dvec3 a = region_mean(ref.image, gx * cw, gy * ch, (gx + 1) * cw, (gy + 1) * ch);
+      const glm::dvec3 b = region_mean(pm.image, gx * cw, gy * ch, (gx + 1) * cw, (gy + 1) * ch);
+      const double la = (a.x + a.y + a.z) / 3, lb = (b.x + b.y + b.z) / 3;
+      INFO("region " << gx << "," << gy << ": path " << la << " photon " << lb);
+      CHECK(lb == Approx(la).epsilon(0.06));
+    }
+  }
+}
+
+TEST_CASE("photon: matches the path tracer on the glossy Cornell box (Phong floor)", "[trace][photon][reference]") {
+  check_photon_against_path("scenes/glossy-cornell.json", 64, 64);
+}
+
+TEST_CASE("photon: matches the path tracer on the material spheres", "[trace][photon][reference]") {
+  check_photon_against_path("scenes/material-spheres.json", 96, 36);
+}
+
 TEST_CASE("photon: caustic centre under a glass sphere matches the path tracer within 10 %", "[trace][photon][caustic]") {
   // A glass ball over a floor under a 2x2 area light; the camera looks straight down at the
   // caustic. The path tracer finds the caustic only by hitting the light through the glass,
