@@ -3,6 +3,12 @@
 
 namespace caustica {
 
+Vec3 point_on_disc(const Vec3& c, const Vec3& d, float r, const Vec2& u) {
+  const Vec2 q = sample_concentric_disk(u) * r;
+  const Frame f(d);
+  return c + q.x * f.s + q.y * f.t;
+}
+
 AreaLight::AreaLight(std::vector<Primitive> shapes, const Color& radiance)
     : shapes_(std::move(shapes)), radiance_(radiance) {
   std::vector<float> areas;
@@ -61,12 +67,16 @@ bool PointLight::sample_li(const Vec3& x, const Vec2&, LightSample& s) const {
   s.n = Vec3(0.0f);
   s.dist = std::sqrt(dist2);
   s.wi = d / s.dist;
-  s.weight = intensity_ / dist2;
-  return true;
+  s.weight = intensity_ * (falloff(-s.wi) / dist2);
+  s.pdf = 0.0f;
+  return !is_black(s.weight);
 }
 
 EmittedPhoton PointLight::sample_emission(const Vec2&, const Vec2& u_dir) const {
-  return {position_, Vec3(0.0f), sample_uniform_sphere(u_dir), power()};
+  if (!spot_) return {position_, Vec3(0.0f), sample_uniform_sphere(u_dir), power()};
+  // Uniform within the cutoff cone: flux = I falloff / pdf.
+  const Vec3 dir = spot_->frame().to_world(sample_uniform_cone(u_dir, spot_->cos_cutoff()));
+  return {position_, Vec3(0.0f), dir, intensity_ * (falloff(dir) / uniform_cone_pdf(spot_->cos_cutoff()))};
 }
 
 Bounds PointLight::bounds() const {

@@ -1,8 +1,10 @@
 // Lights: sampled for shadow rays (next-event estimation) and for photon emission.
 #pragma once
 #include <memory>
+#include <optional>
 #include <vector>
 #include "core/sampling.h"
+#include "core/lights/spot.h"
 #include "core/shape.h"
 
 namespace caustica {
@@ -40,7 +42,38 @@ class Light {
   // Solid-angle density with which sample_li from x picks the point y (normal ny) on the light;
   // 0 for delta lights. For multiple importance sampling of BSDF-sampled hits.
   virtual float pdf_li(const Vec3& /*x*/, const Vec3& /*y*/, const Vec3& /*ny*/) const { return 0.0f; }
+
+  // Lights at infinity (directional, environment): they learn the scene's bounding sphere
+  // before power() is asked, emit photons from a disc outside it, and are seen by rays that
+  // escape the scene.
+  virtual bool is_infinite() const { return false; }
+  virtual void set_scene_sphere(const Vec3& /*centre*/, float /*radius*/) {}
+  // Radiance arriving along a ray that escapes in direction dir, and the solid-angle density
+  // with which sample_li picks dir (for MIS); zero for finite and delta lights.
+  virtual Color escaped(const Vec3& /*dir*/) const { return Color(0.0f); }
+  virtual float pdf_escaped(const Vec3& /*dir*/) const { return 0.0f; }
+  // An infinite light's direction of travel for photons and the radiance (irradiance for a
+  // delta direction) divided by the direction's density.
+  virtual bool sample_travel(const Vec2& /*u*/, Vec3& /*dir*/, Color& /*value*/) const { return false; }
 };
+
+// Lights at infinity keep the scene's bounding sphere: their photons start outside it.
+class InfiniteLight : public Light {
+ public:
+  Bounds bounds() const final { return Bounds{}; }
+  bool is_infinite() const final { return true; }
+  void set_scene_sphere(const Vec3& centre, float radius) final {
+    centre_ = centre;
+    radius_ = std::max(radius, 1e-6f);
+  }
+
+ protected:
+  Vec3 centre_{0.0f};
+  float radius_ = 1.0f;
+};
+
+// A point uniformly on the disc of radius r centred at c perpendicular to the unit vector d.
+Vec3 point_on_disc(const Vec3& c, const Vec3& d, float r, const Vec2& u);
 
 // Any emissive shape: triangles (from a quad or mesh) or a sphere, sampled uniformly by area,
 // emitting Le on the front side only.
@@ -71,9 +104,12 @@ class AreaLight final : public Light {
   float area_ = 0;
 };
 
+// A point light, uniform in every direction or shaped by a spot profile.
 class PointLight final : public Light {
  public:
   PointLight(const Vec3& position, const Color& intensity) : position_(position), intensity_(intensity) {}
+  PointLight(const Vec3& position, const Color& intensity, const SpotProfile& spot)
+      : position_(position), intensity_(intensity), spot_(spot) {}
   bool sample_li(const Vec3& x, const Vec2& u, LightSample& s) const override;
   EmittedPhoton sample_emission(const Vec2& u_pos, const Vec2& u_dir) const override;
   Vec3 sample_origin(const Vec2&, Vec3& normal, float& pdf) const override {
@@ -81,14 +117,16 @@ class PointLight final : public Light {
     pdf = 1.0f;
     return position_;
   }
-  Color emitted_towards(const Vec3&, const Vec3&) const override { return intensity_; }
-  Color power() const override { return 4.0f * kPi * intensity_; }
+  Color emitted_towards(const Vec3&, const Vec3& dir) const override { return intensity_ * falloff(dir); }
+  Color power() const override { return intensity_ * (spot_ ? spot_->solid_angle() : 4.0f * kPi); }
   bool is_delta() const override { return true; }
   Bounds bounds() const override;
 
  private:
+  float falloff(const Vec3& dir) const { return spot_ ? spot_->falloff(dir) : 1.0f; }
   Vec3 position_;
   Color intensity_;
+  std::optional<SpotProfile> spot_;
 };
 
 }  // namespace caustica

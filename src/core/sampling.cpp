@@ -90,4 +90,28 @@ size_t Distribution1D::sample_remap(float& u, float* pmf) const {
   return i;
 }
 
+Distribution2D::Distribution2D(const float* weights, int nx, int ny) : nx_(nx), ny_(ny) {
+  std::vector<float> row_sums(size_t(ny), 0.0f);
+  rows_.reserve(size_t(ny));
+  for (int y = 0; y < ny; ++y) {
+    rows_.emplace_back(weights + size_t(y) * size_t(nx), size_t(nx));
+    row_sums[size_t(y)] = rows_.back().total();
+  }
+  marginal_ = Distribution1D(row_sums.data(), row_sums.size());
+}
+
+Vec2 Distribution2D::sample(const Vec2& u, float* pdf) const {
+  float v = u.y, w = u.x, pm = 0, pc = 0;
+  const size_t row = marginal_.sample_remap(v, &pm);
+  const size_t col = rows_[row].sample_remap(w, &pc);
+  if (pdf) *pdf = pm * pc * float(nx_) * float(ny_);
+  return Vec2((float(col) + w) / float(nx_), (float(row) + v) / float(ny_));
+}
+
+float Distribution2D::pdf(const Vec2& p) const {
+  const int x = std::clamp(int(p.x * float(nx_)), 0, nx_ - 1);
+  const int y = std::clamp(int(p.y * float(ny_)), 0, ny_ - 1);
+  return marginal_.pmf(size_t(y)) * rows_[size_t(y)].pmf(size_t(x)) * float(nx_) * float(ny_);
+}
+
 }  // namespace caustica

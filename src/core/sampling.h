@@ -41,4 +41,20 @@ class Distribution1D {
   float total_ = 0;
 };
 
+// Piecewise-constant density over the unit square from an nx x ny grid of weights (row-major,
+// ny rows), sampled by the marginal over rows then the row's conditional.
+class Distribution2D {
+ public:
+  Distribution2D() = default;
+  Distribution2D(const float* weights, int nx, int ny);
+  // A point in [0, 1)^2 and its density with respect to area in the unit square.
+  Vec2 sample(const Vec2& u, float* pdf) const;
+  float pdf(const Vec2& p) const;
+
+ private:
+  std::vector<Distribution1D> rows_;
+  Distribution1D marginal_;
+  int nx_ = 0, ny_ = 0;
+};
+
 }  // namespace caustica

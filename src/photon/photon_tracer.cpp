@@ -28,7 +28,8 @@ struct Aim {
 
 class Emitter {
  public:
-  Emitter(const Scene& scene, bool caustic, float glossy_threshold) : scene_(scene), caustic_(caustic) {
+  Emitter(const Scene& scene, bool caustic, float glossy_threshold)
+      : scene_(scene), caustic_(caustic), scene_radius_(0.5f * glm::length(scene.bounds().extent())) {
     for (const ObjectInfo& o : scene.objects) {
       if (!is_gather_surface(*scene.materials[o.material], glossy_threshold)) targets_.push_back({o.centre, o.radius});
     }
@@ -48,12 +49,31 @@ class Emitter {
       ray = emission_ray(e.origin, e.normal, e.dir);
       return true;
     }
+    const size_t j = std::min(targets_.size() - 1, size_t(rng.next_float() * targets_.size()));
+    if (light->is_infinite()) {
+      // A direction from the light, then a point on the disc that one target's bounding
+      // sphere casts across it; the density is the mixture over all targets' discs.
+      Vec3 dir;
+      Color value;
+      if (!light->sample_travel(u_dir, dir, value)) return false;
+      const Vec3 p = point_on_disc(targets_[j].centre, dir, targets_[j].radius, u_pos);
+      float pdf_pos = 0;
+      for (const Aim& a : targets_) {
+        const Vec3 d = p - a.centre;
+        const float off2 = glm::dot(d, d) - glm::dot(d, dir) * glm::dot(d, dir);
+        if (off2 <= a.radius * a.radius) pdf_pos += 1.0f / (kPi * a.radius * a.radius);
+      }
+      pdf_pos /= float(targets_.size());
+      if (pdf_pos <= 0 || is_black(value)) return false;
+      flux = value / (pdf_pos * pmf);
+      ray = Ray{p - dir * (2.0f * scene_radius_), dir};
+      return true;
+    }
     // Aim at one specular object's bounding sphere, chosen uniformly; the direction density
     // is the mixture over all objects whose cone contains the direction.
     Vec3 normal;
     float pdf_pos;
     const Vec3 origin = light->sample_origin(u_pos, normal, pdf_pos);
-    const size_t j = std::min(targets_.size() - 1, size_t(rng.next_float() * targets_.size()));
     const Vec3 dir = sample_towards(origin, targets_[j], u_dir);
     float pdf_dir = 0;
     for (const Aim& a : targets_) pdf_dir += cone_pdf(origin, a, dir);
@@ -86,6 +106,7 @@ class Emitter {
 
   const Scene& scene_;
   bool caustic_;
+  float scene_radius_;
   std::vector<Aim> targets_;
 };
 

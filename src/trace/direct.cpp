@@ -3,7 +3,7 @@
 
 namespace caustica {
 
-Color estimate_direct(const Scene& scene, const SurfaceHit& hit, const Vec3& wo, Sampler& sampler, bool mis) {
+Color estimate_direct(const Scene& scene, const SurfaceHit& hit, const Vec3& wo, Sampler& sampler, float mis_ratio) {
   float pmf = 0.0f;
   const Light* light = scene.sample_light(sampler.next1d(), pmf);
   const Vec2 u = sampler.next2d();
@@ -16,8 +16,21 @@ Color estimate_direct(const Scene& scene, const SurfaceHit& hit, const Vec3& wo,
   ++sampler.rays;
   if (scene.occluded(spawn_ray_to(hit.p, hit.n, ls.p, ls.n))) return Color(0.0f);
   float w = 1.0f;
-  if (mis && ls.pdf > 0.0f) w = mis_weight(pmf * ls.pdf, hit.material->pdf(wo_l, wi_l));
+  if (mis_ratio > 0.0f && ls.pdf > 0.0f) w = mis_weight(pmf * ls.pdf, mis_ratio * hit.material->pdf(wo_l, wi_l));
   return f * ls.weight * (w * std::abs(wi_l.z) / pmf);
+}
+
+Color emission_mis(const Scene& scene, const SurfaceHit& hit, const Color& Le, const BsdfVertex& from) {
+  if (is_black(Le) || from.specular || hit.light < 0) return Le;
+  const size_t i = size_t(hit.light);
+  const float light_pdf = scene.light_pmf(i) * scene.lights[i]->pdf_li(from.p, hit.p, hit.n);
+  return Le * mis_weight(from.pdf, light_pdf);
+}
+
+Color escaped_mis(const Scene& scene, const Vec3& dir, const BsdfVertex& from) {
+  if (!scene.has_environment()) return Color(0.0f);
+  const Color Le = scene.escaped(dir);
+  return from.specular ? Le : Le * mis_weight(from.pdf, scene.pdf_escaped(dir));
 }
 
 }  // namespace caustica

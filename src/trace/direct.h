@@ -6,15 +6,30 @@
 namespace caustica {
 
 // Reflected direct radiance towards wo (world) at a hit with non-delta lobes, from one light
-// chosen by power and one point on it: f * Le * G * V / (p_light * pdf). With `mis`, weighted
-// by the power heuristic against BSDF sampling (which must then count the emission it hits
-// with mis_weight).
-Color estimate_direct(const Scene& scene, const SurfaceHit& hit, const Vec3& wo, Sampler& sampler, bool mis = false);
+// chosen by power and one point on it: f * Le * G * V / (p_light * pdf). With mis_ratio > 0,
+// weighted by the power heuristic against BSDF sampling that takes mis_ratio samples per
+// light sample (and must count the emission it hits with emission_mis / escaped_mis, its
+// density scaled by the same ratio); 0 means no MIS.
+Color estimate_direct(const Scene& scene, const SurfaceHit& hit, const Vec3& wo, Sampler& sampler,
+                      float mis_ratio = 0.0f);
 
 // The power heuristic (Veach 1997, beta = 2) for a sample of density pa against density pb.
 inline float mis_weight(float pa, float pb) {
   const float a = pa * pa, b = pb * pb;
   return a + b > 0.0f ? a / (a + b) : 0.0f;
 }
+
+// Where a path continues by BSDF sampling from a vertex that also sampled the lights: the
+// previous vertex's state, for weighting the emission the continuation reaches.
+struct BsdfVertex {
+  bool specular = true;  // a delta bounce (or the camera): emission counts in full
+  float pdf = 0.0f;      // solid-angle density of the BSDF sample, times its MIS sample ratio
+  Vec3 p{0.0f};          // where it was taken
+};
+
+// Emission Le of a surface hit reached from `from`, weighted against next-event estimation.
+Color emission_mis(const Scene& scene, const SurfaceHit& hit, const Color& Le, const BsdfVertex& from);
+// The environment seen by a ray leaving the scene along dir, weighted likewise.
+Color escaped_mis(const Scene& scene, const Vec3& dir, const BsdfVertex& from);
 
 }  // namespace caustica

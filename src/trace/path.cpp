@@ -19,38 +19,27 @@ PathIntegrator::PathIntegrator(const JsonSource& settings, const RenderSettings&
 Color PathIntegrator::Li(const Ray& camera_ray, const Scene& scene, Sampler& sampler) const {
   Color L(0.0f), beta(1.0f);
   Ray ray = camera_ray;
-  bool specular_bounce = true;  // the camera ray counts emission fully, as a delta bounce does
-  float bsdf_pdf = 0.0f;        // solid-angle density of the last BSDF sample
-  Vec3 prev_p(0.0f);
+  BsdfVertex from;  // the camera counts emission fully, as a delta bounce does
   for (int depth = 0; depth < settings_.max_depth; ++depth) {
     SurfaceHit hit;
     ++sampler.rays;
-    if (!scene.intersect(ray, hit)) break;
+    if (!scene.intersect(ray, hit)) {
+      L += beta * escaped_mis(scene, ray.dir, from);
+      break;
+    }
     const Vec3 wo = -ray.dir;
     const Vec3 wo_l = hit.frame.to_local(wo);
     const Material& m = *hit.material;
-    const Color Le = m.emitted(wo_l);
-    if (!is_black(Le)) {
-      if (specular_bounce || hit.light < 0) {
-        L += beta * Le;
-      } else {
-        // Reached by BSDF sampling: weighted against next-event estimation of the same light.
-        const float light_pdf = scene.light_pmf(size_t(hit.light)) *
-                                scene.lights[size_t(hit.light)]->pdf_li(prev_p, hit.p, hit.n);
-        L += beta * Le * mis_weight(bsdf_pdf, light_pdf);
-      }
-    }
+    L += beta * emission_mis(scene, hit, m.emitted(wo_l), from);
     // On the last vertex no BSDF sample follows to share the light with: no MIS weight there.
     const bool last = depth + 1 >= settings_.max_depth;
-    if (!m.is_specular()) L += beta * estimate_direct(scene, hit, wo, sampler, !last);
+    if (!m.is_specular()) L += beta * estimate_direct(scene, hit, wo, sampler, last ? 0.0f : 1.0f);
     if (last) break;
     BsdfSample bs;
     const Vec2 u = sampler.next2d();
     if (!m.sample(wo_l, u, sampler.next1d(), bs)) break;
     beta *= bs.weight;
-    specular_bounce = bs.delta;
-    bsdf_pdf = bs.pdf;
-    prev_p = hit.p;
+    from = BsdfVertex{bs.delta, bs.pdf, hit.p};
     if (depth + 1 >= settings_.rr_depth) {
       const float survive = std::min(1.0f, max_component(beta));
       if (survive <= 0.0f || sampler.next1d() >= survive) break;

@@ -135,16 +135,22 @@ Color PhotonIntegrator::final_gather(const Scene& scene, const SurfaceHit& hit, 
     Vec2 u = sampler.next2d();
     if (i < sx * sy) u = Vec2((float(i % sx) + u.x) / float(sx), (float(i / sx) + u.y) / float(sy));
     BsdfSample bs;
-    if (!hit.material->sample(wo_l, u, 0.0f, bs)) continue;
+    if (!hit.material->sample(wo_l, u, sampler.next1d(), bs)) continue;
     Color throughput = bs.weight;
     Ray ray = spawn_ray(hit.p, hit.n, hit.frame.to_world(bs.wi));
+    const BsdfVertex from{bs.delta, gather_ratio() * bs.pdf, hit.p};
     for (int depth = 0; depth < settings_.max_depth; ++depth) {
       SurfaceHit g;
       ++sampler.rays;
-      if (!scene.intersect(ray, g)) break;
+      // The first segment's emission is direct light, shared with the shadow rays by MIS;
+      // emission reached through specular surfaces after it is the caustic map's.
+      if (!scene.intersect(ray, g)) {
+        if (depth == 0) sum += throughput * escaped_mis(scene, ray.dir, from);
+        break;
+      }
       const Material& m = *g.material;
+      if (depth == 0) sum += throughput * emission_mis(scene, g, m.emitted(g.frame.to_local(-ray.dir)), from);
       if (is_gather_surface(m, settings_.glossy_threshold)) {
-        // Emission reached by a gather ray is not counted: direct light already was.
         sum += throughput * indirect_at(g, -ray.dir, scratch);
         break;
       }
@@ -179,19 +185,28 @@ Color PhotonIntegrator::trace_eye(const Ray& start, const Scene& scene, Sampler&
   std::vector<Neighbour>& scratch = tls_scratch;
   Color L(0.0f), beta(1.0f);
   Ray ray = start;
+  // Emission and the environment count in full after the camera and delta bounces; after a
+  // near-specular glossy bounce they are weighted against that vertex's shadow ray (MIS).
+  BsdfVertex from;
   for (; depth < settings_.max_depth; ++depth) {
     SurfaceHit hit;
     ++sampler.rays;
-    if (!scene.intersect(ray, hit)) break;
+    if (!scene.intersect(ray, hit)) {
+      L += beta * escaped_mis(scene, ray.dir, from);
+      break;
+    }
     const Vec3 wo = -ray.dir;
     const Vec3 wo_l = hit.frame.to_local(wo);
     const Material& m = *hit.material;
-    L += beta * m.emitted(wo_l);  // seen directly or through specular and near-specular surfaces
+    L += beta * emission_mis(scene, hit, m.emitted(wo_l), from);
     if (is_gather_surface(m, settings_.glossy_threshold)) {
       if (sampler.aov) record_aov(hit, wo, sampler.aov, scratch);
       if (!final_gather_) return L + beta * radiance_estimate(global_, hit.p, hit.n, wo, m, global_est_, scratch);
+      // Direct light: shadow rays, MIS-weighted against the final-gather rays, which are BSDF
+      // samples and count the emission their first segment reaches (final_gather).
       Color direct(0.0f);
-      for (int i = 0; i < settings_.direct_samples; ++i) direct += estimate_direct(scene, hit, wo, sampler);
+      const float ratio = gather_ratio();
+      for (int i = 0; i < settings_.direct_samples; ++i) direct += estimate_direct(scene, hit, wo, sampler, ratio);
       L += beta * direct / float(settings_.direct_samples);
       if (!caustic_.empty()) L += beta * radiance_estimate(caustic_, hit.p, hit.n, wo, m, caustic_est_, scratch);
       L += beta * final_gather(scene, hit, wo, sampler, scratch);
@@ -210,10 +225,18 @@ Color PhotonIntegrator::trace_eye(const Ray& start, const Scene& scene, Sampler&
       }
       return L + beta * split;
     }
+    if (!m.is_specular()) {
+      // A glossy lobe below the gather threshold: direct light by a shadow ray, MIS-weighted
+      // against the BSDF sample that continues the path (unweighted on the last vertex).
+      const bool last = depth + 1 >= settings_.max_depth;
+      L += beta * estimate_direct(scene, hit, wo, sampler, last ? 0.0f : 1.0f);
+      if (last) break;
+    }
     BsdfSample bs;
     const Vec2 u = sampler.next2d();
     if (!m.sample(wo_l, u, sampler.next1d(), bs)) break;
     beta *= bs.weight;
+    from = BsdfVertex{bs.delta, bs.pdf, hit.p};
     ray = spawn_ray(hit.p, hit.n, hit.frame.to_world(bs.wi));
   }
   return L;

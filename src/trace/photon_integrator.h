@@ -56,6 +56,10 @@ class PhotonIntegrator final : public Integrator {
   void record_aov(const SurfaceHit& hit, const Vec3& wo, float* aov, std::vector<Neighbour>& scratch) const;
   Color indirect_at(const SurfaceHit& hit, const Vec3& wo, std::vector<Neighbour>& scratch) const;
 
+  // BSDF (gather) samples per shadow-ray sample at a gather point, for MIS; 0 without gathering.
+  float gather_ratio() const {
+    return final_gather_ && settings_.gather_rays > 0 ? float(settings_.gather_rays) / float(settings_.direct_samples) : 0.0f;
+  }
   bool final_gather_;
   PhotonSettings settings_;
   PhotonStats stats_;

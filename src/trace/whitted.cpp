@@ -15,7 +15,7 @@ WhittedIntegrator::WhittedIntegrator(const JsonSource& settings, const RenderSet
 Color WhittedIntegrator::trace(const Ray& ray, const Scene& scene, Sampler& sampler, int depth) const {
   SurfaceHit hit;
   ++sampler.rays;
-  if (!scene.intersect(ray, hit)) return Color(0.0f);
+  if (!scene.intersect(ray, hit)) return scene.escaped(ray.dir);
   const Vec3 wo = -ray.dir;
   const Vec3 wo_l = hit.frame.to_local(wo);
   const Material& m = *hit.material;

@@ -16,8 +16,8 @@ struct TestRender {
 // settings_json: the integrator's settings (without "type"); spp and size override the scene's.
 inline TestRender render_text(const std::string& scene_text, const std::string& integrator,
                               const std::string& settings_json, int spp, int width, int height, uint64_t seed = 1,
-                              int threads = 0) {
-  LoadedScene loaded = parse_scene(scene_text, "test.json", ".");
+                              int threads = 0, const std::string& base_dir = ".") {
+  LoadedScene loaded = parse_scene(scene_text, "test.json", base_dir);
   Scene& scene = *loaded.scene;
   scene.render.width = width;
   scene.render.height = height;

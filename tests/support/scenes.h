@@ -20,4 +20,14 @@ inline std::string furnace_scene(double albedo, double emission, const std::stri
   })";
 }
 
+// A diffuse floor (100 x 100 at y = 0) seen from straight above through a narrow camera, lit
+// by the given light block.
+inline std::string floor_scene(const std::string& light, double albedo = 0.5) {
+  return R"({
+    "camera": {"position": [0, 4, 0], "look_at": [0, 0, 0], "up": [0, 0, 1], "fov": 2},
+    "materials": {"floor": {"type": "diffuse", "reflectance": )" + std::to_string(albedo) + R"(}},
+    "objects": [{"type": "quad", "origin": [-50, 0, -50], "edge1": [0, 0, 100], "edge2": [100, 0, 0], "material": "floor"}],
+    "lights": [)" + light + "]}";
+}
+
 }  // namespace caustica::test

@@ -1,0 +1,29 @@
+// Mitsuba's `directional`: parallel light of a given irradiance (on a surface facing it),
+// travelling along `direction`. Its photons leave a disc outside the scene's bounding sphere.
+#pragma once
+#include "core/light.h"
+
+namespace caustica {
+
+class DirectionalLight final : public InfiniteLight {
+ public:
+  DirectionalLight(const Vec3& direction, const Color& irradiance)
+      : dir_(glm::normalize(direction)), irradiance_(irradiance) {}
+  bool sample_li(const Vec3& x, const Vec2& u, LightSample& s) const override;
+  EmittedPhoton sample_emission(const Vec2& u_pos, const Vec2& u_dir) const override;
+  Vec3 sample_origin(const Vec2& u, Vec3& normal, float& pdf) const override;
+  Color emitted_towards(const Vec3&, const Vec3&) const override { return Color(0.0f); }
+  Color power() const override { return irradiance_ * (kPi * radius_ * radius_); }
+  bool is_delta() const override { return true; }
+  bool sample_travel(const Vec2&, Vec3& dir, Color& value) const override {
+    dir = dir_;
+    value = irradiance_;
+    return true;
+  }
+
+ private:
+  Vec3 dir_;
+  Color irradiance_;
+};
+
+}  // namespace caustica

@@ -1,0 +1,75 @@
+// Lights rendered: analytic irradiance from spot and directional lights on a floor, a constant
+// environment around a sphere, in the path tracer and photon mapping; photon flux of a
+// directional light.
+#include <catch2/catch.hpp>
+#include "support/scenes.h"
+#include "core/scene_loader.h"
+#include "photon/photon_tracer.h"
+#include "support/render_util.h"
+
+using namespace caustica;
+using test::floor_scene;
+using test::render_text;
+
+TEST_CASE("spot light: a floor on the axis reads rho / pi * I / h^2", "[trace][light]") {
+  // Spot 2 units above the floor pointing down; the camera sees the floor around the axis.
+  const std::string scene = floor_scene(
+      R"({"type": "spot", "position": [0, 2, 0], "target": [0, 0, 0], "intensity": [8, 4, 2], "cutoff_angle": 20})");
+  const auto r = render_text(scene, "path", "{}", 4, 8, 8);
+  const Color mean = r.image.mean();
+  // E = I / h^2 (the floor within 0.1 units of the axis: cos^3 > 0.99).
+  for (int c = 0; c < 3; ++c) CHECK(mean[c] == Approx(0.5 / 3.14159265358979 * (8 >> c) / 4.0).epsilon(0.01));
+}
+
+TEST_CASE("directional light: a floor reads rho / pi * E cos(theta), in path and photon", "[trace][light]") {
+  // Light travelling down at 60 degrees from the normal: E cos(theta) = E / 2.
+  const std::string scene = floor_scene(
+      R"({"type": "directional", "direction": [0.8660254, -0.5, 0], "irradiance": [6, 3, 1.5]})");
+  for (const char* integrator : {"path", "photon"}) {
+    INFO(integrator);
+    const auto r = render_text(scene, integrator, "{}", 4, 8, 8);
+    const Color mean = r.image.mean();
+    // Nothing else in the scene reflects light back: the floor sees the light only.
+    for (int c = 0; c < 3; ++c) CHECK(mean[c] == Approx(0.5 / 3.14159265358979 * 3.0 / double(1 << c)).epsilon(0.01));
+  }
+}
+
+TEST_CASE("directional light: photons on a floor carry E times the floor's projected area", "[photon][light]") {
+  const std::string scene = floor_scene(R"({"type": "directional", "direction": [0, -1, 0], "irradiance": [2, 2, 2]})");
+  LoadedScene s = parse_scene(scene, "floor.json", ".");
+  PhotonPassSettings settings;
+  settings.global_photons = 100000;
+  settings.caustic_photons = 0;
+  const PhotonPassResult r = trace_photons(*s.scene, settings);
+  glm::dvec3 sum(0.0);
+  for (const Photon& p : r.global) {
+    if (p.bounces == 0) sum += glm::dvec3(p.power() * r.global_scale);
+  }
+  // The floor is 100 x 100; a single plane reflects nothing back onto itself.
+  CHECK(sum.x == Approx(2.0 * 100 * 100).epsilon(0.02));
+}
+
+TEST_CASE("constant environment: a diffuse sphere reads rho L, the background L, in path and photon",
+          "[trace][light]") {
+  // A convex object under a uniform sky: every point sees the sky over its whole hemisphere.
+  const std::string scene = R"({
+    "camera": {"position": [0, 0, -4], "look_at": [0, 0, 0], "fov": 10},
+    "materials": {"ball": {"type": "diffuse", "reflectance": 0.6}},
+    "objects": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "ball"}],
+    "lights": [{"type": "constant", "radiance": [2, 1, 0.5]}]})";
+  for (const char* integrator : {"path", "photon"}) {
+    INFO(integrator);
+    const auto r = render_text(scene, integrator, "{}", 16, 8, 8);
+    // The camera sees only the sphere (fov 10 degrees at distance 4).
+    const Color mean = r.image.mean();
+    CHECK(mean.x == Approx(1.2).epsilon(0.02));
+    CHECK(mean.z == Approx(0.3).epsilon(0.02));
+  }
+  const std::string sky = R"({
+    "camera": {"position": [0, 0, -4], "look_at": [0, 0, -10], "fov": 10},
+    "materials": {"ball": {"type": "diffuse", "reflectance": 0.6}},
+    "objects": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "ball"}],
+    "lights": [{"type": "constant", "radiance": [2, 1, 0.5]}]})";
+  const auto r = render_text(sky, "photon", "{}", 1, 4, 4);
+  CHECK(r.image.mean().y == Approx(1.0f));
+}
