@@ -3,9 +3,9 @@
 
 namespace caustica {
 
-bool SpecularMaterial::sample(const Vec3& wo, const Vec2&, float u_lobe, BsdfSample& s) const {
+bool SpecularMaterial::sample(const Vec3& wo, const Vec2&, float u_lobe, BsdfSample& s, const ShadingPoint& sp) const {
   BsdfSample lobes[2];
-  const int n = specular_lobes(wo, lobes);
+  const int n = specular_lobes(wo, lobes, sp);
   if (n == 0) return false;
   if (n == 1) {
     s = lobes[0];

@@ -17,6 +17,12 @@ enum BsdfFlags : uint32_t {
   kBsdfSpecular = 1u << 4,  // a delta lobe: eval and pdf are zero, only sample reaches it
 };
 
+// What a BSDF may vary with over a surface: its texture coordinates (Mitsuba's convention:
+// (0, 0) at the image's top-left).
+struct ShadingPoint {
+  Vec2 uv{0.0f};
+};
+
 struct BsdfSample {
   Vec3 wi;        // local frame
   Color weight;   // f * |cos theta_i| / pdf (for a delta lobe: its reflectance or transmittance)
@@ -28,23 +34,26 @@ struct BsdfSample {
 class Material {
  public:
   virtual ~Material() = default;
-  // f(wo, wi) for local directions, non-delta lobes only.
-  virtual Color eval(const Vec3& wo, const Vec3& wi) const = 0;
+  // f(wo, wi) for local directions, non-delta lobes only. Every call takes the shading point
+  // last (textures); untextured BSDFs ignore it, and tests may leave it out.
+  virtual Color eval(const Vec3& wo, const Vec3& wi, const ShadingPoint& sp = {}) const = 0;
   // Solid-angle density with which sample() picks wi, non-delta lobes only.
-  virtual float pdf(const Vec3& wo, const Vec3& wi) const = 0;
+  virtual float pdf(const Vec3& wo, const Vec3& wi, const ShadingPoint& sp = {}) const = 0;
   // u: two uniform numbers for the direction, u_lobe: one to choose a lobe.
-  virtual bool sample(const Vec3& wo, const Vec2& u, float u_lobe, BsdfSample& s) const = 0;
+  virtual bool sample(const Vec3& wo, const Vec2& u, float u_lobe, BsdfSample& s, const ShadingPoint& sp = {}) const = 0;
   // The union of the lobes' flags.
   virtual uint32_t flags() const = 0;
   // The microfacet alpha of the narrowest glossy lobe (0 without one); photon mapping compares
   // it with its glossy threshold to decide whether photons are stored on the surface.
   virtual float glossy_roughness() const { return 0.0f; }
   // Hemispherical reflectance at normal incidence, or an estimate of it; exact for diffuse.
-  virtual Color albedo() const = 0;
+  virtual Color albedo(const ShadingPoint& sp = {}) const = 0;
   // The delta lobes seen from wo, each with its weight (at most two: reflection and
   // refraction), or for a purely glossy BSDF its smooth limit. Lets an integrator follow both
   // branches instead of choosing one at random (and Whitted treat glossy as specular).
-  virtual int specular_lobes(const Vec3& /*wo*/, BsdfSample* /*out*/) const { return 0; }
+  virtual int specular_lobes(const Vec3& /*wo*/, BsdfSample* /*out*/, const ShadingPoint& = {}) const { return 0; }
+  // The probability that a ray stops at the surface (Mitsuba's `mask`); 1 for opaque ones.
+  virtual float opacity(const ShadingPoint& = {}) const { return 1.0f; }
 
   bool has(uint32_t flag) const { return (flags() & flag) != 0; }
   // Only delta lobes: no direction can be evaluated, only sampled.
@@ -63,9 +72,9 @@ class Material {
 // less), and the sample carries the rest of the weight.
 class SpecularMaterial : public Material {
  public:
-  Color eval(const Vec3&, const Vec3&) const final { return Color(0.0f); }
-  float pdf(const Vec3&, const Vec3&) const final { return 0.0f; }
-  bool sample(const Vec3& wo, const Vec2& u, float u_lobe, BsdfSample& s) const final;
+  Color eval(const Vec3&, const Vec3&, const ShadingPoint& = {}) const final { return Color(0.0f); }
+  float pdf(const Vec3&, const Vec3&, const ShadingPoint& = {}) const final { return 0.0f; }
+  bool sample(const Vec3& wo, const Vec2& u, float u_lobe, BsdfSample& s, const ShadingPoint& sp = {}) const final;
 };
 
 // Photon mapping's rule for where photons are stored and where the eye path stops to gather:

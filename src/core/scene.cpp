@@ -2,6 +2,18 @@
 #include "core/scene.h"
 
 namespace caustica {
+namespace {
+// Barycentric coordinates of a point on a triangle (b0 for p0, b1 for p1, b2 for p2).
+Vec3 barycentrics(const Primitive& t, const Vec3& p) {
+  const Vec3 e1 = t.p1 - t.p0, e2 = t.p2 - t.p0, d = p - t.p0;
+  const float d11 = glm::dot(e1, e1), d12 = glm::dot(e1, e2), d22 = glm::dot(e2, e2);
+  const float d1 = glm::dot(d, e1), d2 = glm::dot(d, e2);
+  const float denom = d11 * d22 - d12 * d12;
+  if (!(denom > 0.0f)) return Vec3(1.0f, 0.0f, 0.0f);
+  const float b1 = (d22 * d1 - d12 * d2) / denom, b2 = (d11 * d2 - d12 * d1) / denom;
+  return Vec3(1.0f - b1 - b2, b1, b2);
+}
+}  // namespace
 
 void Scene::build(std::vector<Primitive> prims) {
   bvh_.build(std::move(prims));
@@ -34,7 +46,26 @@ bool Scene::intersect(const Ray& ray, SurfaceHit& hit) const {
   hit.n = prim.normal_at(hit.p);
   hit.material = materials[prim.material].get();
   hit.light = prim.light;
-  hit.frame = Frame(hit.n);
+  Vec3 ns = hit.n;
+  hit.sp.uv = Vec2(0.0f);
+  if (prim.kind == ShapeKind::Sphere) {
+    // Mitsuba's sphere parameterisation: u = phi / 2 pi around z, v = theta / pi from +z.
+    const Vec3 d = (hit.p - prim.p0) / prim.radius();
+    float u = std::atan2(d.y, d.x) * (0.5f * kInvPi);
+    if (u < 0.0f) u += 1.0f;
+    hit.sp.uv = Vec2(u, std::acos(std::clamp(d.z, -1.0f, 1.0f)) * kInvPi);
+  } else if (prim.attributes != kNoAttributes) {
+    const TriangleAttributes& a = attributes[prim.attributes];
+    const Vec3 b = barycentrics(prim, hit.p);
+    if (a.has_uvs) hit.sp.uv = b.x * a.uv[0] + b.y * a.uv[1] + b.z * a.uv[2];
+    if (a.has_normals) {
+      const Vec3 n = b.x * a.n[0] + b.y * a.n[1] + b.z * a.n[2];
+      const float len = glm::length(n);
+      if (len > 1e-8f && std::isfinite(len)) ns = (prim.flip ? -n : n) / len;
+      if (glm::dot(ns, hit.n) < 0.0f) ns = -ns;  // the winding decides the side; the normals only bend it
+    }
+  }
+  hit.frame = Frame(ns);
   return true;
 }
 

@@ -9,6 +9,7 @@
 #include "core/camera.h"
 #include "core/light.h"
 #include "core/material.h"
+#include "core/textures/texture.h"
 
 namespace caustica {
 
@@ -33,7 +34,12 @@ struct SurfaceHit {
   float t = kInfinity;
   const Material* material = nullptr;
   int32_t light = -1;
-  Frame frame;  // around n
+  Frame frame;      // the shading frame: around the interpolated vertex normal, or n
+  ShadingPoint sp;  // texture coordinates
+  // A direction that the shading frame and the geometric normal put on different sides: the
+  // light leaks that shading normals cause. Integrators drop such light and BSDF samples, as
+  // Mitsuba 0.6's "strict normals" does.
+  bool leaks(const Vec3& w) const { return glm::dot(w, n) * glm::dot(w, frame.n) <= 0.0f; }
 };
 
 // One scene object's bounding sphere and material (photon emission aims at specular ones).
@@ -53,6 +59,8 @@ class Scene {
   std::string source_file;
 
   std::vector<std::unique_ptr<Material>> materials;
+  std::vector<std::unique_ptr<Texture>> textures;  // read by the materials
+  std::vector<TriangleAttributes> attributes;      // indexed by Primitive::attributes
   std::vector<std::string> material_names;
   std::vector<std::unique_ptr<Light>> lights;
   std::vector<ObjectInfo> objects;

@@ -94,7 +94,8 @@ struct Loader {
       const json& m = it.value();
       if (!m.is_object()) r.fail(mp, "expected an object");
       std::vector<std::unique_ptr<Material>> nested;
-      std::unique_ptr<Material> mat = read_material(r, m, mp, nested, out.warnings);
+      const MaterialContext ctx{r, base_dir, nested, scene().textures, out.warnings};
+      std::unique_ptr<Material> mat = read_material(ctx, m, mp);
       for (auto& n : nested) {
         scene().materials.push_back(std::move(n));
         scene().material_names.push_back(it.key() + " (nested)");
@@ -139,10 +140,16 @@ struct Loader {
       const Vec3 e1 = r.vec3(r.require(j, p, "edge1"), child(p, "edge1"));
       const Vec3 e2 = r.vec3(r.require(j, p, "edge2"), child(p, "edge2"));
       if (!(glm::length(glm::cross(e1, e2)) > 0.0f)) r.fail(p, "quad has zero area (edges parallel or zero)");
-      add_triangle(shapes, o, o + e1, o + e1 + e2, p);
-      add_triangle(shapes, o, o + e1 + e2, o + e2, p);
+      // UVs along the edges: (0, 0) at the origin, (1, 0) at origin + edge1, (0, 1) at origin + edge2.
+      TriangleAttributes a;
+      a.has_uvs = true;
+      a.uv[0] = Vec2(0, 0), a.uv[1] = Vec2(1, 0), a.uv[2] = Vec2(1, 1);
+      add_triangle(shapes, o, o + e1, o + e1 + e2, p, &a);
+      a.uv[1] = Vec2(1, 1), a.uv[2] = Vec2(0, 1);
+      add_triangle(shapes, o, o + e1 + e2, o + e2, p, &a);
     } else if (type == "mesh") {
-      r.check_object(j, p, {"type", "name", "material", "flip_normal", "vertices", "indices", "file", "scale", "translate"});
+      r.check_object(j, p, {"type", "name", "material", "flip_normal", "vertices", "indices", "normals", "uvs", "file",
+                            "scale", "translate", "face_normals"});
       read_mesh(j, p, shapes);
     } else {
       r.fail(child(p, "type"), "unknown object type \"" + type + "\" (known: sphere, triangle, quad, mesh)");
@@ -188,7 +195,8 @@ struct Loader {
     scene().objects.push_back(info);
   }
 
-  void add_triangle(std::vector<Primitive>& shapes, const Vec3& a, const Vec3& b, const Vec3& c, const std::string& p) {
+  void add_triangle(std::vector<Primitive>& shapes, const Vec3& a, const Vec3& b, const Vec3& c, const std::string& p,
+                    const TriangleAttributes* attributes = nullptr) {
     const float area2 = glm::length(glm::cross(b - a, c - a));
     if (!(area2 > 0.0f) || !std::isfinite(area2)) {
       ++degenerate_;
@@ -196,12 +204,34 @@ struct Loader {
       return;
     }
     shapes.push_back(Primitive::triangle(a, b, c));
+    if (attributes && (attributes->has_normals || attributes->has_uvs)) {
+      shapes.back().attributes = static_cast<uint32_t>(scene().attributes.size());
+      scene().attributes.push_back(*attributes);
+    }
     ++out.triangle_count;
   }
 
-  void read_mesh(const json& j, const std::string& p, std::vector<Primitive>& shapes) {
+  // A mesh as read: positions, triangles, and per-triangle shading data (or none).
+  struct MeshData {
     std::vector<Vec3> verts;
     std::vector<glm::ivec3> tris;
+    std::vector<TriangleAttributes> attributes;  // empty, or one per triangle
+  };
+
+  // Per-vertex normals or UVs of an inline mesh: an array as long as "vertices".
+  template <class T, class Read>
+  std::vector<T> per_vertex(const json& j, const std::string& p, const char* key, size_t n, Read read) {
+    std::vector<T> out;
+    if (!j.contains(key)) return out;
+    const json& a = j[key];
+    if (!a.is_array() || a.size() != n) r.fail(child(p, key), "expected one entry per vertex (" + std::to_string(n) + ")");
+    for (size_t i = 0; i < n; ++i) out.push_back(read(a[i], child(child(p, key), i)));
+    return out;
+  }
+
+  void read_mesh(const json& j, const std::string& p, std::vector<Primitive>& shapes) {
+    MeshData mesh;
+    std::vector<Vec3>& verts = mesh.verts;
     const bool inline_mesh = j.contains("vertices") || j.contains("indices");
     if (inline_mesh && j.contains("file")) r.fail(p, "give either \"file\" or \"vertices\" and \"indices\", not both");
     if (inline_mesh) {
@@ -215,11 +245,29 @@ struct Loader {
         if (!ix[i].is_array() || ix[i].size() != 3) r.fail(tp, "expected 3 vertex indices");
         glm::ivec3 t;
         for (int k = 0; k < 3; ++k) t[k] = int(r.integer(ix[i][k], child(tp, size_t(k)), 0, int64_t(verts.size()) - 1));
-        tris.push_back(t);
+        mesh.tris.push_back(t);
+      }
+      const auto normals = per_vertex<Vec3>(j, p, "normals", verts.size(),
+                                            [&](const json& x, const std::string& xp) { return r.vec3(x, xp); });
+      const auto uvs = per_vertex<Vec2>(j, p, "uvs", verts.size(), [&](const json& x, const std::string& xp) {
+        if (!x.is_array() || x.size() != 2) r.fail(xp, "expected [u, v]");
+        return Vec2(float(r.number(x[0], child(xp, size_t(0)))), float(r.number(x[1], child(xp, size_t(1)))));
+      });
+      if (!normals.empty() || !uvs.empty()) {
+        for (const glm::ivec3& t : mesh.tris) {
+          TriangleAttributes a;
+          a.has_normals = !normals.empty();
+          a.has_uvs = !uvs.empty();
+          for (int k = 0; k < 3; ++k) {
+            if (a.has_normals) a.n[k] = normals[size_t(t[k])];
+            if (a.has_uvs) a.uv[k] = uvs[size_t(t[k])];
+          }
+          mesh.attributes.push_back(a);
+        }
       }
     } else {
       const std::string file = r.string(r.require(j, p, "file"), child(p, "file"));
-      load_obj(file, child(p, "file"), verts, tris);
+      load_obj(file, child(p, "file"), mesh);
     }
     Vec3 scale(1.0f), translate(0.0f);
     if (j.contains("scale")) {
@@ -227,17 +275,46 @@ struct Loader {
                                      : r.vec3(j["scale"], child(p, "scale"));
     }
     if (j.contains("translate")) translate = r.vec3(j["translate"], child(p, "translate"));
+    const bool face_normals = j.contains("face_normals") && r.boolean(j["face_normals"], child(p, "face_normals"));
     for (Vec3& v : verts) v = v * scale + translate;
-    for (const glm::ivec3& t : tris) add_triangle(shapes, verts[t.x], verts[t.y], verts[t.z], p);
+    for (size_t i = 0; i < mesh.tris.size(); ++i) {
+      const glm::ivec3& t = mesh.tris[i];
+      TriangleAttributes* a = mesh.attributes.empty() ? nullptr : &mesh.attributes[i];
+      if (a) {
+        if (face_normals) a->has_normals = false;
+        // Normals transform by the inverse of the scale.
+        for (Vec3& n : a->n) n = n / scale;
+      }
+      add_triangle(shapes, verts[size_t(t.x)], verts[size_t(t.y)], verts[size_t(t.z)], p, a);
+    }
   }
 
-  void load_obj(const std::string& file, const std::string& p, std::vector<Vec3>& verts, std::vector<glm::ivec3>& tris) {
+  // tinyobjloader reads "nan", "inf" and garbage in v/vn/vt lines as 0 without a word: every
+  // number there must be finite, else the error names the file and the line.
+  void check_obj_numbers(std::istream& in, const std::string& file, const std::string& p) {
+    std::string line;
+    for (size_t number = 1; std::getline(in, line); ++number) {
+      if (line.size() < 2 || line[0] != 'v' || !(line[1] == ' ' || line[1] == '\t' || line[1] == 'n' || line[1] == 't')) continue;
+      std::istringstream tokens(line.substr(line[1] == ' ' || line[1] == '\t' ? 1 : 2));
+      std::string tok;
+      while (tokens >> tok) {
+        char* end = nullptr;
+        const double v = std::strtod(tok.c_str(), &end);
+        if (end == tok.c_str() || *end != '\0' || !std::isfinite(v)) {
+          r.fail(p, "OBJ file " + file + ":" + std::to_string(number) + ": \"" + tok + "\" is not a finite number");
+        }
+      }
+    }
+  }
+
+  void load_obj(const std::string& file, const std::string& p, MeshData& mesh) {
     const fs::path path = fs::path(file).is_absolute() ? fs::path(file) : fs::path(base_dir) / file;
     std::error_code ec;
     if (!fs::exists(path, ec)) r.fail(p, "mesh file not found: tried " + path.string());
     if (!fs::is_regular_file(path, ec)) r.fail(p, "mesh path is not a regular file: " + path.string());
     std::ifstream probe(path);
     if (!probe) r.fail(p, "mesh file cannot be read: " + path.string());
+    check_obj_numbers(probe, path.string(), p);
     tinyobj::ObjReaderConfig config;
     config.triangulate = true;
     config.vertex_color = false;
@@ -248,19 +325,42 @@ struct Loader {
     }
     const auto& attrib = reader.GetAttrib();
     for (size_t i = 0; i + 2 < attrib.vertices.size(); i += 3) {
-      verts.emplace_back(attrib.vertices[i], attrib.vertices[i + 1], attrib.vertices[i + 2]);
+      mesh.verts.emplace_back(attrib.vertices[i], attrib.vertices[i + 1], attrib.vertices[i + 2]);
     }
+    const size_t n_normals = attrib.normals.size() / 3, n_uvs = attrib.texcoords.size() / 2;
+    bool any_attributes = false;
     for (const auto& shape : reader.GetShapes()) {
       const auto& idx = shape.mesh.indices;
       for (size_t i = 0; i + 2 < idx.size(); i += 3) {
         glm::ivec3 t(idx[i].vertex_index, idx[i + 1].vertex_index, idx[i + 2].vertex_index);
         for (int k = 0; k < 3; ++k) {
-          if (t[k] < 0 || size_t(t[k]) >= verts.size()) r.fail(p, "OBJ file " + path.string() + " has a face with a vertex index out of range");
+          if (t[k] < 0 || size_t(t[k]) >= mesh.verts.size()) r.fail(p, "OBJ file " + path.string() + " has a face with a vertex index out of range");
         }
-        tris.push_back(t);
+        mesh.tris.push_back(t);
+        // vn and vt, when every corner has them; OBJ's v points up the image, ours down.
+        TriangleAttributes a;
+        a.has_normals = a.has_uvs = true;
+        for (int k = 0; k < 3; ++k) {
+          const auto& c = idx[i + size_t(k)];
+          if (c.normal_index >= 0 && size_t(c.normal_index) < n_normals) {
+            const float* n = &attrib.normals[3 * size_t(c.normal_index)];
+            a.n[k] = Vec3(n[0], n[1], n[2]);
+          } else {
+            a.has_normals = false;
+          }
+          if (c.texcoord_index >= 0 && size_t(c.texcoord_index) < n_uvs) {
+            const float* uv = &attrib.texcoords[2 * size_t(c.texcoord_index)];
+            a.uv[k] = Vec2(uv[0], 1.0f - uv[1]);
+          } else {
+            a.has_uvs = false;
+          }
+        }
+        any_attributes = any_attributes || a.has_normals || a.has_uvs;
+        mesh.attributes.push_back(a);
       }
     }
-    if (tris.empty()) r.fail(p, "OBJ file " + path.string() + " has no faces");
+    if (!any_attributes) mesh.attributes.clear();
+    if (mesh.tris.empty()) r.fail(p, "OBJ file " + path.string() + " has no faces");
   }
 
   void read_light(const json& j, const std::string& p) {

@@ -20,12 +20,22 @@ struct Bounds {
 };
 
 enum class ShapeKind : uint8_t { Triangle, Sphere };
+constexpr uint32_t kNoAttributes = 0xffffffffu;
+
+// Per-corner shading data of a triangle: interpolated vertex normals (smooth shading) and
+// texture coordinates (Mitsuba's convention, (0, 0) at the image's top-left).
+struct TriangleAttributes {
+  Vec3 n[3]{Vec3(0.0f), Vec3(0.0f), Vec3(0.0f)};
+  Vec2 uv[3]{Vec2(0.0f), Vec2(0.0f), Vec2(0.0f)};
+  bool has_normals = false, has_uvs = false;
+};
 
 // A triangle (p0, p1, p2) or a sphere (centre p0, radius p1.x). `flip` reverses the normal.
 struct Primitive {
   Vec3 p0, p1, p2;
   uint32_t material = 0;
   int32_t light = -1;  // index of the area light this primitive belongs to, or -1
+  uint32_t attributes = kNoAttributes;  // index of the triangle's vertex normals and UVs in the scene
   ShapeKind kind = ShapeKind::Triangle;
   bool flip = false;
 

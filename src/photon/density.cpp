@@ -35,13 +35,13 @@ Color gather(const PhotonMap& map, const Vec3& p, const Vec3& n_side, const Esti
 }
 }  // namespace
 
-Color radiance_estimate(const PhotonMap& map, const Vec3& p, const Vec3& n, const Vec3& wo, const Material& m,
-                        const EstimateSettings& s, std::vector<Neighbour>& scratch, EstimateInfo* info) {
-  const Vec3 n_side = glm::dot(wo, n) >= 0 ? n : -n;
-  const Frame frame(n);
-  const Vec3 wo_l = frame.to_local(wo);
-  return gather(map, p, n_side, s, scratch, info,
-                [&](const Vec3& wi) { return m.eval(wo_l, frame.to_local(wi)); });
+Color radiance_estimate(const PhotonMap& map, const SurfaceHit& hit, const Vec3& wo, const EstimateSettings& s,
+                        std::vector<Neighbour>& scratch, EstimateInfo* info) {
+  const Vec3 n_side = glm::dot(wo, hit.n) >= 0 ? hit.n : -hit.n;
+  const Vec3 wo_l = hit.frame.to_local(wo);
+  const Material& m = *hit.material;
+  return gather(map, hit.p, n_side, s, scratch, info,
+                [&](const Vec3& wi) { return m.eval(wo_l, hit.frame.to_local(wi), hit.sp); });
 }
 
 Color irradiance_estimate(const PhotonMap& map, const Vec3& p, const Vec3& n_side, const EstimateSettings& s,

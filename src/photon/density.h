@@ -2,6 +2,7 @@
 #pragma once
 #include <vector>
 #include "core/material.h"
+#include "core/scene.h"
 #include "photon/photon_map.h"
 
 namespace caustica {
@@ -18,12 +19,13 @@ struct EstimateInfo {
   float radius = 0;    // radius of the estimate's disc
 };
 
-// Reflected radiance towards wo at a surface point (p, geometric normal n), from the k
-// nearest photons: L = sum f_r(wi_p, wo) dPhi_p / (pi r^2) (Jensen 1996, eq. 6); with the
-// cone filter the sum is weighted by w_p = 1 - d_p / (k r) and normalised by 1 - 2 / (3k).
-// Photons from behind the surface, or whose normal disagrees with n, are skipped.
-Color radiance_estimate(const PhotonMap& map, const Vec3& p, const Vec3& n, const Vec3& wo, const Material& m,
-                        const EstimateSettings& s, std::vector<Neighbour>& scratch, EstimateInfo* info = nullptr);
+// Reflected radiance towards wo at a surface hit, from the k nearest photons:
+// L = sum f_r(wi_p, wo) dPhi_p / (pi r^2) (Jensen 1996, eq. 6), f_r in the hit's shading frame
+// at its texture coordinates; with the cone filter the sum is weighted by w_p = 1 - d_p / (k r)
+// and normalised by 1 - 2 / (3k). Photons from behind the surface, or whose normal disagrees
+// with the geometric normal, are skipped.
+Color radiance_estimate(const PhotonMap& map, const SurfaceHit& hit, const Vec3& wo, const EstimateSettings& s,
+                        std::vector<Neighbour>& scratch, EstimateInfo* info = nullptr);
 
 // Irradiance E = sum dPhi_p / (pi r^2) on the side of n that `side` points to.
 Color irradiance_estimate(const PhotonMap& map, const Vec3& p, const Vec3& n_side, const EstimateSettings& s,

@@ -132,7 +132,9 @@ void trace_photon(const Scene& scene, Ray ray, Color flux, bool caustic, const P
     }
     BsdfSample bs;
     const Vec2 u(rng.next_float(), rng.next_float());
-    if (!m.sample(wo_l, u, rng.next_float(), bs)) return;
+    if (!m.sample(wo_l, u, rng.next_float(), bs, hit.sp)) return;
+    const Vec3 wi = hit.frame.to_world(bs.wi);
+    if (hit.leaks(wi)) return;
     if (gather) {
       // Russian roulette with the sampled reflectance as survival probability (for a diffuse
       // surface its albedo, as in Jensen 2001, sec. 5.3): the flux keeps its magnitude.
@@ -144,7 +146,7 @@ void trace_photon(const Scene& scene, Ray ray, Color flux, bool caustic, const P
       ++specular_bounces;
       if (is_black(flux)) return;
     }
-    ray = spawn_ray(hit.p, hit.n, hit.frame.to_world(bs.wi));
+    ray = spawn_ray(hit.p, hit.n, wi);
   }
 }
 

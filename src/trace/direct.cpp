@@ -11,12 +11,13 @@ Color estimate_direct(const Scene& scene, const SurfaceHit& hit, const Vec3& wo,
   LightSample ls;
   if (!light->sample_li(hit.p, u, ls)) return Color(0.0f);
   const Vec3 wo_l = hit.frame.to_local(wo), wi_l = hit.frame.to_local(ls.wi);
-  const Color f = hit.material->eval(wo_l, wi_l);
+  if (hit.leaks(ls.wi)) return Color(0.0f);
+  const Color f = hit.material->eval(wo_l, wi_l, hit.sp);
   if (is_black(f)) return Color(0.0f);
   ++sampler.rays;
   if (scene.occluded(spawn_ray_to(hit.p, hit.n, ls.p, ls.n))) return Color(0.0f);
   float w = 1.0f;
-  if (mis_ratio > 0.0f && ls.pdf > 0.0f) w = mis_weight(pmf * ls.pdf, mis_ratio * hit.material->pdf(wo_l, wi_l));
+  if (mis_ratio > 0.0f && ls.pdf > 0.0f) w = mis_weight(pmf * ls.pdf, mis_ratio * hit.material->pdf(wo_l, wi_l, hit.sp));
   return f * ls.weight * (w * std::abs(wi_l.z) / pmf);
 }
 

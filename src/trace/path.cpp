@@ -37,7 +37,9 @@ Color PathIntegrator::Li(const Ray& camera_ray, const Scene& scene, Sampler& sam
     if (last) break;
     BsdfSample bs;
     const Vec2 u = sampler.next2d();
-    if (!m.sample(wo_l, u, sampler.next1d(), bs)) break;
+    if (!m.sample(wo_l, u, sampler.next1d(), bs, hit.sp)) break;
+    const Vec3 wi = hit.frame.to_world(bs.wi);
+    if (hit.leaks(wi)) break;
     beta *= bs.weight;
     from = BsdfVertex{bs.delta, bs.pdf, hit.p};
     if (depth + 1 >= settings_.rr_depth) {
@@ -45,7 +47,6 @@ Color PathIntegrator::Li(const Ray& camera_ray, const Scene& scene, Sampler& sam
       if (survive <= 0.0f || sampler.next1d() >= survive) break;
       beta /= survive;
     }
-    const Vec3 wi = hit.frame.to_world(bs.wi);
     ray = spawn_ray(hit.p, hit.n, wi);
   }
   return L;

@@ -118,9 +118,9 @@ Color PhotonIntegrator::indirect_at(const SurfaceHit& hit, const Vec3& wo, std::
   const Vec3 n_side = glm::dot(wo, hit.n) >= 0 ? hit.n : -hit.n;
   if (irradiance_.size() > 0 && hit.material->is_lambertian()) {
     Color E;
-    if (irradiance_.lookup(hit.p, n_side, global_est_.max_radius, E, scratch)) return hit.material->albedo() * kInvPi * E;
+    if (irradiance_.lookup(hit.p, n_side, global_est_.max_radius, E, scratch)) return hit.material->albedo(hit.sp) * kInvPi * E;
   }
-  return radiance_estimate(global_, hit.p, hit.n, wo, *hit.material, global_est_, scratch);
+  return radiance_estimate(global_, hit, wo, global_est_, scratch);
 }
 
 Color PhotonIntegrator::final_gather(const Scene& scene, const SurfaceHit& hit, const Vec3& wo, Sampler& sampler,
@@ -135,9 +135,11 @@ Color PhotonIntegrator::final_gather(const Scene& scene, const SurfaceHit& hit, 
     Vec2 u = sampler.next2d();
     if (i < sx * sy) u = Vec2((float(i % sx) + u.x) / float(sx), (float(i / sx) + u.y) / float(sy));
     BsdfSample bs;
-    if (!hit.material->sample(wo_l, u, sampler.next1d(), bs)) continue;
+    if (!hit.material->sample(wo_l, u, sampler.next1d(), bs, hit.sp)) continue;
+    const Vec3 wi = hit.frame.to_world(bs.wi);
+    if (hit.leaks(wi)) continue;
     Color throughput = bs.weight;
-    Ray ray = spawn_ray(hit.p, hit.n, hit.frame.to_world(bs.wi));
+    Ray ray = spawn_ray(hit.p, hit.n, wi);
     const BsdfVertex from{bs.delta, gather_ratio() * bs.pdf, hit.p};
     for (int depth = 0; depth < settings_.max_depth; ++depth) {
       SurfaceHit g;
@@ -157,9 +159,11 @@ Color PhotonIntegrator::final_gather(const Scene& scene, const SurfaceHit& hit, 
       BsdfSample ss;
       const Vec3 gwo = g.frame.to_local(-ray.dir);
       const Vec2 us = sampler.next2d();
-      if (!m.sample(gwo, us, sampler.next1d(), ss)) break;
+      if (!m.sample(gwo, us, sampler.next1d(), ss, g.sp)) break;
+      const Vec3 gwi = g.frame.to_world(ss.wi);
+      if (g.leaks(gwi)) break;
       throughput *= ss.weight;
-      ray = spawn_ray(g.p, g.n, g.frame.to_world(ss.wi));
+      ray = spawn_ray(g.p, g.n, gwi);
     }
   }
   return sum / float(n);
@@ -168,8 +172,8 @@ Color PhotonIntegrator::final_gather(const Scene& scene, const SurfaceHit& hit, 
 void PhotonIntegrator::record_aov(const SurfaceHit& hit, const Vec3& wo, float* aov,
                                   std::vector<Neighbour>& scratch) const {
   EstimateInfo g, c;
-  radiance_estimate(global_, hit.p, hit.n, wo, *hit.material, global_est_, scratch, &g);
-  if (!caustic_.empty()) radiance_estimate(caustic_, hit.p, hit.n, wo, *hit.material, caustic_est_, scratch, &c);
+  radiance_estimate(global_, hit, wo, global_est_, scratch, &g);
+  if (!caustic_.empty()) radiance_estimate(caustic_, hit, wo, caustic_est_, scratch, &c);
   aov[0] = float(g.photons);
   aov[1] = float(c.photons);
   aov[2] = g.radius;
@@ -201,19 +205,19 @@ Color PhotonIntegrator::trace_eye(const Ray& start, const Scene& scene, Sampler&
     L += beta * emission_mis(scene, hit, m.emitted(wo_l), from);
     if (is_gather_surface(m, settings_.glossy_threshold)) {
       if (sampler.aov) record_aov(hit, wo, sampler.aov, scratch);
-      if (!final_gather_) return L + beta * radiance_estimate(global_, hit.p, hit.n, wo, m, global_est_, scratch);
+      if (!final_gather_) return L + beta * radiance_estimate(global_, hit, wo, global_est_, scratch);
       // Direct light: shadow rays, MIS-weighted against the final-gather rays, which are BSDF
       // samples and count the emission their first segment reaches (final_gather).
       Color direct(0.0f);
       const float ratio = gather_ratio();
       for (int i = 0; i < settings_.direct_samples; ++i) direct += estimate_direct(scene, hit, wo, sampler, ratio);
       L += beta * direct / float(settings_.direct_samples);
-      if (!caustic_.empty()) L += beta * radiance_estimate(caustic_, hit.p, hit.n, wo, m, caustic_est_, scratch);
+      if (!caustic_.empty()) L += beta * radiance_estimate(caustic_, hit, wo, caustic_est_, scratch);
       L += beta * final_gather(scene, hit, wo, sampler, scratch);
       return L;
     }
     BsdfSample lobes[2];
-    if (splits_left > 0 && m.is_specular() && m.specular_lobes(wo_l, lobes) == 2) {
+    if (splits_left > 0 && m.is_specular() && m.specular_lobes(wo_l, lobes, hit.sp) == 2) {
       // Follow both reflection and refraction, weighted by Fresnel, instead of choosing one
       // at random: choosing leaves bright speckles (the light reflected in the glass) that
       // take many samples to average out.
@@ -234,10 +238,12 @@ Color PhotonIntegrator::trace_eye(const Ray& start, const Scene& scene, Sampler&
     }
     BsdfSample bs;
     const Vec2 u = sampler.next2d();
-    if (!m.sample(wo_l, u, sampler.next1d(), bs)) break;
+    if (!m.sample(wo_l, u, sampler.next1d(), bs, hit.sp)) break;
+    const Vec3 wi = hit.frame.to_world(bs.wi);
+    if (hit.leaks(wi)) break;
     beta *= bs.weight;
     from = BsdfVertex{bs.delta, bs.pdf, hit.p};
-    ray = spawn_ray(hit.p, hit.n, hit.frame.to_world(bs.wi));
+    ray = spawn_ray(hit.p, hit.n, wi);
   }
   return L;
 }

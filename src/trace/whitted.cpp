@@ -25,7 +25,7 @@ Color WhittedIntegrator::trace(const Ray& ray, const Scene& scene, Sampler& samp
   // Mirrors and glass, and glossy lobes in their specular limit: follow every branch,
   // weighted by Fresnel, as Whitted (1980) did.
   BsdfSample lobes[2];
-  const int n = m.specular_lobes(wo_l, lobes);
+  const int n = m.specular_lobes(wo_l, lobes, hit.sp);
   for (int i = 0; i < n; ++i) {
     if (is_black(lobes[i].weight)) continue;
     const Ray next = spawn_ray(hit.p, hit.n, hit.frame.to_world(lobes[i].wi));

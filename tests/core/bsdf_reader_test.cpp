@@ -14,7 +14,9 @@ std::unique_ptr<Material> read(const std::string& text, std::vector<std::string>
   const JsonReader r("m.json");
   std::vector<std::unique_ptr<Material>> nested;
   std::vector<std::string> warnings;
-  auto m = read_material(r, nlohmann::json::parse(text), "/materials/x", nested, warnings);
+  static std::vector<std::unique_ptr<Texture>> textures;
+  const MaterialContext ctx{r, ".", nested, textures, warnings};
+  auto m = read_material(ctx, nlohmann::json::parse(text), "/materials/x");
   if (warnings_out) *warnings_out = warnings;
   static std::vector<std::unique_ptr<Material>> keep;  // nested materials outlive the call
   for (auto& n : nested) keep.push_back(std::move(n));

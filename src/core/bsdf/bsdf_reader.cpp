@@ -7,12 +7,14 @@
 #include "core/bsdf/ior.h"
 #include "core/bsdf/phong.h"
 #include "core/bsdf/twosided.h"
+#include "core/textures/texture_reader.h"
 
 namespace caustica {
 namespace {
 using nlohmann::json;
 
 struct Block {
+  const MaterialContext& ctx;
   const JsonReader& r;
   const json& m;
   const std::string& p;
@@ -20,6 +22,13 @@ struct Block {
   std::string at(const char* key) const { return child(p, key); }
   Color color(const char* key, const Color& fallback) const {
     return has(key) ? r.color(m[key], at(key)) : fallback;
+  }
+  // A colour that may also be a texture block.
+  ColorParam param(const char* key, const Color& fallback) const {
+    if (!has(key)) return fallback;
+    if (!m[key].is_object()) return r.color(m[key], at(key));
+    ctx.textures.push_back(read_texture(ctx, m[key], at(key)));
+    return ColorParam(ctx.textures.back().get());
   }
   float number(const char* key, float fallback, double lo, double hi) const {
     return has(key) ? float(r.number_in(m[key], at(key), lo, hi)) : fallback;
@@ -73,8 +82,8 @@ struct Block {
   }
 };
 
-void check_albedo(const Block& b, const char* key, const Color& c, std::vector<std::string>& warnings) {
-  if (max_component(c) > 1.0f) {
+void check_albedo(const Block& b, const char* key, const ColorParam& c, std::vector<std::string>& warnings) {
+  if (!c.texture && max_component(c.value) > 1.0f) {
     b.r.warn(b.at(key), std::string(key) + " above 1 reflects more than it receives (energy is created)", warnings);
   }
 }
@@ -86,29 +95,29 @@ const char* known_material_types() {
          "mirror, glass";
 }
 
-std::unique_ptr<Material> read_material(const JsonReader& r, const json& m, const std::string& p,
-                                        std::vector<std::unique_ptr<Material>>& nested,
-                                        std::vector<std::string>& warnings) {
+std::unique_ptr<Material> read_material(const MaterialContext& ctx, const json& m, const std::string& p) {
+  const JsonReader& r = ctx.r;
+  std::vector<std::string>& warnings = ctx.warnings;
   if (!m.is_object()) r.fail(p, "expected an object");
-  const Block b{r, m, p};
+  const Block b{ctx, r, m, p};
   const std::string type = r.string(r.require(m, p, "type"), child(p, "type"));
   std::unique_ptr<Material> mat;
   if (type == "diffuse") {
     r.check_object(m, p, {"type", "reflectance", "albedo", "emission"});
     if (b.has("reflectance") && b.has("albedo")) r.fail(p, "albedo is an alias of reflectance: give one");
-    const Color rho = b.color(b.has("albedo") ? "albedo" : "reflectance", Color(0.5f));
+    const ColorParam rho = b.param(b.has("albedo") ? "albedo" : "reflectance", Color(0.5f));
     check_albedo(b, b.has("albedo") ? "albedo" : "reflectance", rho, warnings);
     mat = std::make_unique<Lambertian>(rho);
   } else if (type == "mirror") {
     r.check_object(m, p, {"type", "reflectance", "emission"});
-    mat = std::make_unique<Conductor>(ConductorIor{}, b.color("reflectance", Color(1.0f)));
+    mat = std::make_unique<Conductor>(ConductorIor{}, b.param("reflectance", Color(1.0f)));
   } else if (type == "conductor") {
     r.check_object(m, p, {"type", "material", "eta", "k", "specular_reflectance", "emission"});
-    mat = std::make_unique<Conductor>(b.conductor(), b.color("specular_reflectance", Color(1.0f)));
+    mat = std::make_unique<Conductor>(b.conductor(), b.param("specular_reflectance", Color(1.0f)));
   } else if (type == "roughconductor") {
     r.check_object(m, p, {"type", "material", "eta", "k", "specular_reflectance", "distribution", "alpha",
                           "alpha_u", "alpha_v", "emission"});
-    mat = std::make_unique<RoughConductor>(b.distribution(), b.conductor(), b.color("specular_reflectance", Color(1.0f)));
+    mat = std::make_unique<RoughConductor>(b.distribution(), b.conductor(), b.param("specular_reflectance", Color(1.0f)));
   } else if (type == "glass") {
     r.check_object(m, p, {"type", "ior", "fresnel", "emission"});
     const float ior = b.ior("ior", 1.5f);
@@ -130,9 +139,9 @@ std::unique_ptr<Material> read_material(const JsonReader& r, const json& m, cons
     mat = std::make_unique<RoughDielectric>(b.distribution(), b.eta(1.5046f));
   } else if (type == "phong") {
     r.check_object(m, p, {"type", "diffuse_reflectance", "specular_reflectance", "exponent", "emission"});
-    const Color kd = b.color("diffuse_reflectance", Color(0.5f));
-    const Color ks = b.color("specular_reflectance", Color(0.2f));
-    if (max_component(kd + ks) > 1.0f) {
+    const ColorParam kd = b.param("diffuse_reflectance", Color(0.5f));
+    const ColorParam ks = b.param("specular_reflectance", Color(0.2f));
+    if (!kd.texture && !ks.texture && max_component(kd.value + ks.value) > 1.0f) {
       r.warn(p, "diffuse_reflectance + specular_reflectance above 1 creates energy", warnings);
     }
     mat = std::make_unique<Phong>(kd, ks, b.number("exponent", 30.0f, 0.0, 1e6));
@@ -144,12 +153,12 @@ std::unique_ptr<Material> read_material(const JsonReader& r, const json& m, cons
     if (inner.is_array()) {
       if (inner.size() != 1 && inner.size() != 2) r.fail(ip, "expected one BSDF, or two (front and back)");
       for (size_t i = 0; i < inner.size(); ++i) {
-        nested.push_back(read_material(r, inner[i], child(ip, i), nested, warnings));
-        sides.push_back(nested.back().get());
+        ctx.nested.push_back(read_material(ctx, inner[i], child(ip, i)));
+        sides.push_back(ctx.nested.back().get());
       }
     } else {
-      nested.push_back(read_material(r, inner, ip, nested, warnings));
-      sides.push_back(nested.back().get());
+      ctx.nested.push_back(read_material(ctx, inner, ip));
+      sides.push_back(ctx.nested.back().get());
     }
     for (size_t i = 0; i < sides.size(); ++i) {
       if (sides[i]->emission != Color(0.0f)) r.fail(ip, "emission belongs on the twosided material, not inside it");

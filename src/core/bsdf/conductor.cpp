@@ -10,30 +10,30 @@ Color ConductorIor::reflectance(float cos_i) const {
   return perfect() ? Color(1.0f) : fresnel_conductor(cos_i, eta, k);
 }
 
-int Conductor::specular_lobes(const Vec3& wo, BsdfSample* out) const {
+int Conductor::specular_lobes(const Vec3& wo, BsdfSample* out, const ShadingPoint& sp) const {
   if (wo.z == 0.0f) return 0;
   out->wi = reflect_local(wo);
-  out->weight = specular_ * ior_.reflectance(std::abs(wo.z));
+  out->weight = specular_.at(sp.uv) * ior_.reflectance(std::abs(wo.z));
   out->pdf = 0.0f;
   out->delta = true;
   out->lobe = kBsdfSpecular | kBsdfReflection;
   return 1;
 }
 
-int RoughConductor::specular_lobes(const Vec3& wo, BsdfSample* out) const {
-  return smooth().specular_lobes(wo, out);
+int RoughConductor::specular_lobes(const Vec3& wo, BsdfSample* out, const ShadingPoint& sp) const {
+  return smooth().specular_lobes(wo, out, sp);
 }
 
-Color RoughConductor::eval(const Vec3& wo_in, const Vec3& wi_in) const {
+Color RoughConductor::eval(const Vec3& wo_in, const Vec3& wi_in, const ShadingPoint& sp) const {
   if (wo_in.z * wi_in.z <= 0.0f) return Color(0.0f);
   const Vec3 wo = wo_in.z < 0 ? flip_z(wo_in) : wo_in, wi = wo_in.z < 0 ? flip_z(wi_in) : wi_in;
   const Vec3 h = glm::normalize(wo + wi);
   const float d = dist_.D(h);
   if (d <= 0.0f) return Color(0.0f);
-  return specular_ * ior_.reflectance(glm::dot(wo, h)) * (d * dist_.G(wo, wi) / (4.0f * wo.z * wi.z));
+  return specular_.at(sp.uv) * ior_.reflectance(glm::dot(wo, h)) * (d * dist_.G(wo, wi) / (4.0f * wo.z * wi.z));
 }
 
-float RoughConductor::pdf(const Vec3& wo_in, const Vec3& wi_in) const {
+float RoughConductor::pdf(const Vec3& wo_in, const Vec3& wi_in, const ShadingPoint&) const {
   if (wo_in.z * wi_in.z <= 0.0f) return 0.0f;
   const Vec3 wo = wo_in.z < 0 ? flip_z(wo_in) : wo_in, wi = wo_in.z < 0 ? flip_z(wi_in) : wi_in;
   const Vec3 h = glm::normalize(wo + wi);
@@ -41,7 +41,7 @@ float RoughConductor::pdf(const Vec3& wo_in, const Vec3& wi_in) const {
   return woh > 0.0f ? dist_.pdf(wo, h) / (4.0f * woh) : 0.0f;
 }
 
-bool RoughConductor::sample(const Vec3& wo_in, const Vec2& u, float, BsdfSample& s) const {
+bool RoughConductor::sample(const Vec3& wo_in, const Vec2& u, float, BsdfSample& s, const ShadingPoint& sp) const {
   if (wo_in.z == 0.0f) return false;
   const bool below = wo_in.z < 0;
   const Vec3 wo = below ? flip_z(wo_in) : wo_in;
@@ -53,7 +53,7 @@ bool RoughConductor::sample(const Vec3& wo_in, const Vec2& u, float, BsdfSample&
   s.pdf = dist_.pdf(wo, m) / (4.0f * wom);
   if (!(s.pdf > 0.0f)) return false;
   // f cos / pdf = F D G / (4 cos_o) / (G1(wo) D / (4 cos_o)) = F G / G1(wo).
-  s.weight = specular_ * ior_.reflectance(wom) * (dist_.G(wo, wi) / dist_.G1(wo));
+  s.weight = specular_.at(sp.uv) * ior_.reflectance(wom) * (dist_.G(wo, wi) / dist_.G1(wo));
   s.wi = below ? flip_z(wi) : wi;
   s.delta = false;
   s.lobe = kBsdfGlossy | kBsdfReflection;

@@ -3,6 +3,7 @@
 #pragma once
 #include "core/bsdf/microfacet.h"
 #include "core/material.h"
+#include "core/textures/texture.h"
 
 namespace caustica {
 
@@ -16,34 +17,34 @@ struct ConductorIor {
 
 class Conductor final : public SpecularMaterial {
  public:
-  Conductor(const ConductorIor& ior, const Color& specular_reflectance)
+  Conductor(const ConductorIor& ior, const ColorParam& specular_reflectance)
       : ior_(ior), specular_(specular_reflectance) {}
-  int specular_lobes(const Vec3& wo, BsdfSample* out) const override;
+  int specular_lobes(const Vec3& wo, BsdfSample* out, const ShadingPoint& sp = {}) const override;
   uint32_t flags() const override { return kBsdfSpecular | kBsdfReflection; }
-  Color albedo() const override { return specular_ * ior_.reflectance(1.0f); }
+  Color albedo(const ShadingPoint& sp = {}) const override { return specular_.at(sp.uv) * ior_.reflectance(1.0f); }
 
  private:
   ConductorIor ior_;
-  Color specular_;
+  ColorParam specular_;
 };
 
 class RoughConductor final : public Material {
  public:
-  RoughConductor(const MicrofacetDistribution& dist, const ConductorIor& ior, const Color& specular_reflectance)
+  RoughConductor(const MicrofacetDistribution& dist, const ConductorIor& ior, const ColorParam& specular_reflectance)
       : dist_(dist), ior_(ior), specular_(specular_reflectance) {}
-  Color eval(const Vec3& wo, const Vec3& wi) const override;
-  float pdf(const Vec3& wo, const Vec3& wi) const override;
-  bool sample(const Vec3& wo, const Vec2& u, float u_lobe, BsdfSample& s) const override;
-  int specular_lobes(const Vec3& wo, BsdfSample* out) const override;  // the smooth limit
+  Color eval(const Vec3& wo, const Vec3& wi, const ShadingPoint& sp = {}) const override;
+  float pdf(const Vec3& wo, const Vec3& wi, const ShadingPoint& sp = {}) const override;
+  bool sample(const Vec3& wo, const Vec2& u, float u_lobe, BsdfSample& s, const ShadingPoint& sp = {}) const override;
+  int specular_lobes(const Vec3& wo, BsdfSample* out, const ShadingPoint& sp = {}) const override;  // the smooth limit
   uint32_t flags() const override { return kBsdfGlossy | kBsdfReflection; }
   float glossy_roughness() const override { return std::min(dist_.alpha_u(), dist_.alpha_v()); }
-  Color albedo() const override { return specular_ * ior_.reflectance(1.0f); }
+  Color albedo(const ShadingPoint& sp = {}) const override { return specular_.at(sp.uv) * ior_.reflectance(1.0f); }
 
  private:
   Conductor smooth() const { return Conductor(ior_, specular_); }
   MicrofacetDistribution dist_;
   ConductorIor ior_;
-  Color specular_;
+  ColorParam specular_;
 };
 
 }  // namespace caustica

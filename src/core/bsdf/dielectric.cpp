@@ -25,7 +25,7 @@ bool Dielectric::refract(const Vec3& wo, Vec3& wt) const {
   return caustica::refract(wo, n, wo.z > 0.0f ? eta_ : 1.0f / eta_, wt);
 }
 
-int Dielectric::specular_lobes(const Vec3& wo, BsdfSample* out) const {
+int Dielectric::specular_lobes(const Vec3& wo, BsdfSample* out, const ShadingPoint&) const {
   if (wo.z == 0.0f) return 0;
   Vec3 wt;
   if (!refract(wo, wt)) {
@@ -43,7 +43,7 @@ float ThinDielectric::reflectance(float cos_i) const {
   return r < 1.0f ? 2.0f * r / (1.0f + r) : 1.0f;
 }
 
-int ThinDielectric::specular_lobes(const Vec3& wo, BsdfSample* out) const {
+int ThinDielectric::specular_lobes(const Vec3& wo, BsdfSample* out, const ShadingPoint&) const {
   if (wo.z == 0.0f) return 0;
   const float r = reflectance(std::abs(wo.z));
   out[0] = delta_sample(reflect_local(wo), r, kBsdfReflection);
@@ -64,7 +64,7 @@ bool RoughDielectric::half_vector(const Vec3& wo, const Vec3& wi, Vec3& wm, floa
   return glm::dot(wm, wi) * wi.z > 0.0f && glm::dot(wm, wo) * wo.z > 0.0f;
 }
 
-Color RoughDielectric::eval(const Vec3& wo, const Vec3& wi) const {
+Color RoughDielectric::eval(const Vec3& wo, const Vec3& wi, const ShadingPoint&) const {
   Vec3 wm;
   float etap;
   if (!half_vector(wo, wi, wm, etap)) return Color(0.0f);
@@ -76,7 +76,7 @@ Color RoughDielectric::eval(const Vec3& wo, const Vec3& wi) const {
   return Color(ft);
 }
 
-float RoughDielectric::pdf(const Vec3& wo, const Vec3& wi) const {
+float RoughDielectric::pdf(const Vec3& wo, const Vec3& wi, const ShadingPoint&) const {
   Vec3 wm;
   float etap;
   if (!half_vector(wo, wi, wm, etap)) return 0.0f;
@@ -87,7 +87,7 @@ float RoughDielectric::pdf(const Vec3& wo, const Vec3& wi) const {
   return pm * std::abs(glm::dot(wi, wm)) / (denom * denom) * (1.0f - F);
 }
 
-bool RoughDielectric::sample(const Vec3& wo, const Vec2& u, float u_lobe, BsdfSample& s) const {
+bool RoughDielectric::sample(const Vec3& wo, const Vec2& u, float u_lobe, BsdfSample& s, const ShadingPoint&) const {
   if (wo.z == 0.0f) return false;
   const Vec3 wm = dist_.sample_visible(wo, u);
   const float cos_om = glm::dot(wo, wm);

@@ -12,9 +12,9 @@ namespace caustica {
 class Dielectric final : public SpecularMaterial {
  public:
   Dielectric(float eta, FresnelModel model) : eta_(eta), model_(model) {}
-  int specular_lobes(const Vec3& wo, BsdfSample* out) const override;
+  int specular_lobes(const Vec3& wo, BsdfSample* out, const ShadingPoint& sp = {}) const override;
   uint32_t flags() const override { return kBsdfSpecular | kBsdfReflection | kBsdfTransmission; }
-  Color albedo() const override { return Color(1.0f); }
+  Color albedo(const ShadingPoint& = {}) const override { return Color(1.0f); }
   // Reflectance for local direction wo (either side of the boundary).
   float reflectance(const Vec3& wo) const;
   // Refracted local direction for wo; false under total internal reflection.
@@ -29,9 +29,9 @@ class Dielectric final : public SpecularMaterial {
 class ThinDielectric final : public SpecularMaterial {
  public:
   explicit ThinDielectric(float eta) : eta_(eta) {}
-  int specular_lobes(const Vec3& wo, BsdfSample* out) const override;
+  int specular_lobes(const Vec3& wo, BsdfSample* out, const ShadingPoint& sp = {}) const override;
   uint32_t flags() const override { return kBsdfSpecular | kBsdfReflection | kBsdfTransmission; }
-  Color albedo() const override { return Color(1.0f); }
+  Color albedo(const ShadingPoint& = {}) const override { return Color(1.0f); }
   // Reflectance of the pane with all internal reflections: R + T^2 R / (1 - R^2) = 2R / (1 + R).
   float reflectance(float cos_i) const;
 
@@ -42,15 +42,15 @@ class ThinDielectric final : public SpecularMaterial {
 class RoughDielectric final : public Material {
  public:
   RoughDielectric(const MicrofacetDistribution& dist, float eta) : dist_(dist), eta_(eta) {}
-  Color eval(const Vec3& wo, const Vec3& wi) const override;
-  float pdf(const Vec3& wo, const Vec3& wi) const override;
-  bool sample(const Vec3& wo, const Vec2& u, float u_lobe, BsdfSample& s) const override;
-  int specular_lobes(const Vec3& wo, BsdfSample* out) const override {  // the smooth limit
-    return Dielectric(eta_, FresnelModel::Exact).specular_lobes(wo, out);
+  Color eval(const Vec3& wo, const Vec3& wi, const ShadingPoint& sp = {}) const override;
+  float pdf(const Vec3& wo, const Vec3& wi, const ShadingPoint& sp = {}) const override;
+  bool sample(const Vec3& wo, const Vec2& u, float u_lobe, BsdfSample& s, const ShadingPoint& sp = {}) const override;
+  int specular_lobes(const Vec3& wo, BsdfSample* out, const ShadingPoint& sp = {}) const override {  // the smooth limit
+    return Dielectric(eta_, FresnelModel::Exact).specular_lobes(wo, out, sp);
   }
   uint32_t flags() const override { return kBsdfGlossy | kBsdfReflection | kBsdfTransmission; }
   float glossy_roughness() const override { return std::min(dist_.alpha_u(), dist_.alpha_v()); }
-  Color albedo() const override { return Color(1.0f); }
+  Color albedo(const ShadingPoint& = {}) const override { return Color(1.0f); }
 
  private:
   // The half vector of (wo, wi), facing +z, and the relative index across it; false when the

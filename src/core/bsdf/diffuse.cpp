@@ -4,21 +4,21 @@
 
 namespace caustica {
 
-Color Lambertian::eval(const Vec3& wo, const Vec3& wi) const {
-  return wo.z * wi.z > 0.0f ? albedo_ * kInvPi : Color(0.0f);
+Color Lambertian::eval(const Vec3& wo, const Vec3& wi, const ShadingPoint& sp) const {
+  return wo.z * wi.z > 0.0f ? albedo_.at(sp.uv) * kInvPi : Color(0.0f);
 }
 
-float Lambertian::pdf(const Vec3& wo, const Vec3& wi) const {
+float Lambertian::pdf(const Vec3& wo, const Vec3& wi, const ShadingPoint&) const {
   return wo.z * wi.z > 0.0f ? std::abs(wi.z) * kInvPi : 0.0f;
 }
 
-bool Lambertian::sample(const Vec3& wo, const Vec2& u, float, BsdfSample& s) const {
+bool Lambertian::sample(const Vec3& wo, const Vec2& u, float, BsdfSample& s, const ShadingPoint& sp) const {
   if (wo.z == 0.0f) return false;
   s.wi = sample_cosine_hemisphere(u);
   if (wo.z < 0.0f) s.wi.z = -s.wi.z;  // two-sided: scatter back to the side wo is on
   s.pdf = std::abs(s.wi.z) * kInvPi;
   if (s.pdf <= 0.0f) return false;
-  s.weight = albedo_;  // (rho/pi) cos / (cos/pi)
+  s.weight = albedo_.at(sp.uv);  // (rho/pi) cos / (cos/pi)
   s.delta = false;
   s.lobe = kBsdfDiffuse | kBsdfReflection;
   return true;

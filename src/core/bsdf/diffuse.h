@@ -1,20 +1,21 @@
 // Lambertian reflection (Mitsuba's `diffuse`), two-sided.
 #pragma once
 #include "core/material.h"
+#include "core/textures/texture.h"
 
 namespace caustica {
 
 class Lambertian final : public Material {
  public:
-  explicit Lambertian(const Color& albedo) : albedo_(albedo) {}
-  Color eval(const Vec3& wo, const Vec3& wi) const override;  // rho / pi on wo's side
-  float pdf(const Vec3& wo, const Vec3& wi) const override;
-  bool sample(const Vec3& wo, const Vec2& u, float u_lobe, BsdfSample& s) const override;
+  explicit Lambertian(const ColorParam& albedo) : albedo_(albedo) {}
+  Color eval(const Vec3& wo, const Vec3& wi, const ShadingPoint& sp = {}) const override;  // rho / pi on wo's side
+  float pdf(const Vec3& wo, const Vec3& wi, const ShadingPoint& sp = {}) const override;
+  bool sample(const Vec3& wo, const Vec2& u, float u_lobe, BsdfSample& s, const ShadingPoint& sp = {}) const override;
   uint32_t flags() const override { return kBsdfDiffuse | kBsdfReflection; }
-  Color albedo() const override { return albedo_; }
+  Color albedo(const ShadingPoint& sp = {}) const override { return albedo_.at(sp.uv); }
 
  private:
-  Color albedo_;
+  ColorParam albedo_;
 };
 
 // Caustica's reflecting BSDFs are two-sided: seen from below, they are evaluated mirrored

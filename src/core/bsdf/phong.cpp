@@ -6,42 +6,46 @@
 
 namespace caustica {
 
-Phong::Phong(const Color& diffuse, const Color& specular, float exponent)
-    : kd_(diffuse), ks_(specular), exponent_(exponent) {
-  const float d = average(kd_), s = average(ks_);
-  p_specular_ = d + s > 0.0f ? s / (d + s) : 0.0f;
-}
+Phong::Phong(const ColorParam& diffuse, const ColorParam& specular, float exponent)
+    : kd_(diffuse), ks_(specular), exponent_(exponent) {}
 
 uint32_t Phong::flags() const {
   uint32_t f = kBsdfReflection;
-  if (!is_black(kd_)) f |= kBsdfDiffuse;
-  if (!is_black(ks_)) f |= kBsdfGlossy;
+  if (!kd_.is_black()) f |= kBsdfDiffuse;
+  if (!ks_.is_black()) f |= kBsdfGlossy;
   return f;
 }
 
-Color Phong::eval(const Vec3& wo_in, const Vec3& wi_in) const {
+float Phong::specular_probability(const ShadingPoint& sp) const {
+  const float d = average(kd_.at(sp.uv)), s = average(ks_.at(sp.uv));
+  return d + s > 0.0f ? s / (d + s) : 0.0f;
+}
+
+Color Phong::eval(const Vec3& wo_in, const Vec3& wi_in, const ShadingPoint& sp) const {
   if (wo_in.z * wi_in.z <= 0.0f) return Color(0.0f);
   const Vec3 wo = wo_in.z < 0 ? flip_z(wo_in) : wo_in, wi = wo_in.z < 0 ? flip_z(wi_in) : wi_in;
   const float cos_a = glm::dot(reflect_local(wo), wi);
-  Color f = kd_ * kInvPi;
-  if (cos_a > 0.0f) f += ks_ * ((exponent_ + 2.0f) / (2.0f * kPi) * std::pow(cos_a, exponent_));
+  Color f = kd_.at(sp.uv) * kInvPi;
+  if (cos_a > 0.0f) f += ks_.at(sp.uv) * ((exponent_ + 2.0f) / (2.0f * kPi) * std::pow(cos_a, exponent_));
   return f;
 }
 
-float Phong::pdf(const Vec3& wo_in, const Vec3& wi_in) const {
+float Phong::pdf(const Vec3& wo_in, const Vec3& wi_in, const ShadingPoint& sp) const {
   if (wo_in.z * wi_in.z <= 0.0f) return 0.0f;
   const Vec3 wo = wo_in.z < 0 ? flip_z(wo_in) : wo_in, wi = wo_in.z < 0 ? flip_z(wi_in) : wi_in;
   const float cos_a = glm::dot(reflect_local(wo), wi);
   const float spec = cos_a > 0.0f ? (exponent_ + 1.0f) / (2.0f * kPi) * std::pow(cos_a, exponent_) : 0.0f;
-  return p_specular_ * spec + (1.0f - p_specular_) * wi.z * kInvPi;
+  const float p = specular_probability(sp);
+  return p * spec + (1.0f - p) * wi.z * kInvPi;
 }
 
-bool Phong::sample(const Vec3& wo_in, const Vec2& u, float u_lobe, BsdfSample& s) const {
-  if (wo_in.z == 0.0f || p_specular_ + average(kd_) <= 0.0f) return false;
+bool Phong::sample(const Vec3& wo_in, const Vec2& u, float u_lobe, BsdfSample& s, const ShadingPoint& sp) const {
+  const float p = specular_probability(sp);
+  if (wo_in.z == 0.0f || p + average(kd_.at(sp.uv)) <= 0.0f) return false;
   const bool below = wo_in.z < 0;
   const Vec3 wo = below ? flip_z(wo_in) : wo_in;
   Vec3 wi;
-  if (u_lobe < p_specular_) {
+  if (u_lobe < p) {
     // cos^n-distributed around the mirror direction: cos a = u^(1 / (n + 1)).
     const float cos_a = std::pow(u.x, 1.0f / (exponent_ + 1.0f));
     const float sin_a = std::sqrt(std::max(0.0f, 1.0f - cos_a * cos_a));
@@ -53,9 +57,9 @@ bool Phong::sample(const Vec3& wo_in, const Vec2& u, float u_lobe, BsdfSample& s
     s.lobe = kBsdfDiffuse | kBsdfReflection;
   }
   if (wi.z <= 0.0f) return false;
-  s.pdf = pdf(wo, wi);
+  s.pdf = pdf(wo, wi, sp);
   if (!(s.pdf > 0.0f)) return false;
-  s.weight = eval(wo, wi) * (wi.z / s.pdf);
+  s.weight = eval(wo, wi, sp) * (wi.z / s.pdf);
   s.wi = below ? flip_z(wi) : wi;
   s.delta = false;
   return true;

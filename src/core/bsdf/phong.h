@@ -2,24 +2,25 @@
 // f = kd / pi + ks (n + 2) / (2 pi) cos^n(alpha), alpha between wi and wo's mirror direction.
 #pragma once
 #include "core/material.h"
+#include "core/textures/texture.h"
 
 namespace caustica {
 
 class Phong final : public Material {
  public:
-  Phong(const Color& diffuse, const Color& specular, float exponent);
-  Color eval(const Vec3& wo, const Vec3& wi) const override;
-  float pdf(const Vec3& wo, const Vec3& wi) const override;
-  bool sample(const Vec3& wo, const Vec2& u, float u_lobe, BsdfSample& s) const override;
+  Phong(const ColorParam& diffuse, const ColorParam& specular, float exponent);
+  Color eval(const Vec3& wo, const Vec3& wi, const ShadingPoint& sp = {}) const override;
+  float pdf(const Vec3& wo, const Vec3& wi, const ShadingPoint& sp = {}) const override;
+  bool sample(const Vec3& wo, const Vec2& u, float u_lobe, BsdfSample& s, const ShadingPoint& sp = {}) const override;
   uint32_t flags() const override;
   // The Beckmann alpha of equal highlight width, sqrt(2 / (n + 2)) (Walter et al. 2007, eq. 33).
   float glossy_roughness() const override { return std::sqrt(2.0f / (exponent_ + 2.0f)); }
-  Color albedo() const override { return kd_ + ks_; }
+  Color albedo(const ShadingPoint& sp = {}) const override { return kd_.at(sp.uv) + ks_.at(sp.uv); }
 
  private:
-  Color kd_, ks_;
+  float specular_probability(const ShadingPoint& sp) const;  // of sampling the specular lobe
+  ColorParam kd_, ks_;
   float exponent_;
-  float p_specular_;  // probability of sampling the specular lobe
 };
 
 }  // namespace caustica

@@ -8,13 +8,13 @@ namespace caustica {
 class TwoSided final : public Material {
  public:
   TwoSided(const Material* front, const Material* back) : front_(front), back_(back) {}
-  Color eval(const Vec3& wo, const Vec3& wi) const override;
-  float pdf(const Vec3& wo, const Vec3& wi) const override;
-  bool sample(const Vec3& wo, const Vec2& u, float u_lobe, BsdfSample& s) const override;
-  int specular_lobes(const Vec3& wo, BsdfSample* out) const override;
+  Color eval(const Vec3& wo, const Vec3& wi, const ShadingPoint& sp = {}) const override;
+  float pdf(const Vec3& wo, const Vec3& wi, const ShadingPoint& sp = {}) const override;
+  bool sample(const Vec3& wo, const Vec2& u, float u_lobe, BsdfSample& s, const ShadingPoint& sp = {}) const override;
+  int specular_lobes(const Vec3& wo, BsdfSample* out, const ShadingPoint& sp = {}) const override;
   uint32_t flags() const override { return front_->flags() | back_->flags(); }
   float glossy_roughness() const override;
-  Color albedo() const override { return front_->albedo(); }
+  Color albedo(const ShadingPoint& sp = {}) const override { return front_->albedo(sp); }
 
  private:
   const Material* front_;  // owned by the scene

@@ -1,0 +1,65 @@
+// Bitmap textures through OpenImageIO's TextureSystem.
+#include "core/textures/bitmap.h"
+#include <OpenImageIO/texture.h>
+#include "core/image.h"
+#include "core/json_reader.h"
+
+namespace caustica {
+namespace {
+OIIO::TextureSystem* texture_system() {
+  static OIIO::TextureSystem* ts = [] {
+    OIIO::TextureSystem* t = OIIO::TextureSystem::create(/*shared=*/true);
+    t->attribute("automip", 1);         // untiled, un-MIP-mapped files are fine
+    t->attribute("autotile", 64);
+    t->attribute("max_memory_MB", 512.0f);
+    return t;
+  }();
+  return ts;
+}
+
+float srgb_to_linear(float c) {
+  return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
+}
+}  // namespace
+
+BitmapTexture::BitmapTexture(const std::string& path, TextureFilter filter, TextureWrap wrap, const UvTransform& to_uv,
+                             bool raw)
+    : path_(path), filter_(filter), wrap_(wrap), to_uv_(to_uv) {
+  OIIO::TextureSystem* ts = texture_system();
+  const OIIO::ustring name(path);
+  OIIO::ImageSpec spec;
+  if (!ts->get_imagespec(name, 0, spec)) {
+    const std::string err = ts->geterror();
+    throw InputError(path + ": cannot read the texture" + (err.empty() ? std::string() : ": " + err));
+  }
+  width_ = spec.width;
+  height_ = spec.height;
+  channels_ = spec.nchannels;
+  if (width_ <= 0 || height_ <= 0 || channels_ <= 0) throw InputError(path + ": the texture has no pixels");
+  // 8- and 16-bit images hold display-referred sRGB values unless declared raw.
+  srgb_ = !raw && (spec.format == OIIO::TypeDesc::UINT8 || spec.format == OIIO::TypeDesc::UINT16);
+  handle_ = ts->get_texture_handle(name);
+}
+
+Color BitmapTexture::eval(const Vec2& uv_in) const {
+  const Vec2 uv = to_uv_.apply(uv_in);
+  OIIO::TextureOpt opt;
+  opt.interpmode = filter_ == TextureFilter::Nearest ? OIIO::TextureOpt::InterpClosest : OIIO::TextureOpt::InterpBilinear;
+  opt.mipmode = OIIO::TextureOpt::MipModeNoMIP;
+  const OIIO::TextureOpt::Wrap w = wrap_ == TextureWrap::Repeat  ? OIIO::TextureOpt::WrapPeriodic
+                                   : wrap_ == TextureWrap::Mirror ? OIIO::TextureOpt::WrapMirror
+                                                                  : OIIO::TextureOpt::WrapClamp;
+  opt.swrap = opt.twrap = w;
+  float rgb[3] = {0, 0, 0};
+  const int n = std::min(channels_, 3);
+  OIIO::TextureSystem* ts = texture_system();
+  if (!ts->texture(static_cast<OIIO::TextureSystem::TextureHandle*>(handle_), nullptr, opt, uv.x, uv.y, 0, 0, 0, 0, n, rgb)) {
+    return Color(0.0f);
+  }
+  if (n == 1) rgb[1] = rgb[2] = rgb[0];
+  Color c(rgb[0], rgb[1], rgb[2]);
+  if (srgb_) c = Color(srgb_to_linear(c.x), srgb_to_linear(c.y), srgb_to_linear(c.z));
+  return c;
+}
+
+}  // namespace caustica

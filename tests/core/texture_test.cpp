@@ -1,0 +1,145 @@
+// Textures and surface parameterisations: checkerboard and to_uv, bitmaps through
+// OpenImageIO's TextureSystem (orientation, wrap modes, sRGB), sphere UVs, OBJ vt/vn,
+// face_normals, and the errors for missing or unreadable texture files.
+#include <catch2/catch.hpp>
+#include "core/image.h"
+#include "core/scene_loader.h"
+#include "core/textures/bitmap.h"
+#include "support/temp_dir.h"
+
+using namespace caustica;
+using Catch::Matchers::Contains;
+
+TEST_CASE("checkerboard: color0 where u and v fall in the same half, to_uv scales and shifts", "[core][texture]") {
+  const CheckerboardTexture plain(Color(1, 0, 0), Color(0, 0, 1), UvTransform{});
+  CHECK(plain.eval(Vec2(0.75f, 0.75f)) == plain.eval(Vec2(0.25f, 0.25f)));
+  CHECK(plain.eval(Vec2(0.75f, 0.25f)) != plain.eval(Vec2(0.25f, 0.25f)));
+  CHECK(plain.eval(Vec2(1.25f, 0.25f)) == plain.eval(Vec2(0.25f, 0.25f)));  // periodic
+  UvTransform four;
+  four.m00 = four.m11 = 4.0f;
+  const CheckerboardTexture tiled(Color(1, 0, 0), Color(0, 0, 1), four);
+  CHECK(tiled.eval(Vec2(0.0625f, 0.0625f)) == plain.eval(Vec2(0.25f, 0.25f)));
+  CHECK(tiled.eval(Vec2(0.1875f, 0.0625f)) == plain.eval(Vec2(0.75f, 0.25f)));
+}
+
+TEST_CASE("checkerboard: Mitsuba's colours, color0 where (u > 1/2) == (v > 1/2)", "[core][texture]") {
+  const CheckerboardTexture t(Color(1, 0, 0), Color(0, 0, 1), UvTransform{});
+  CHECK(t.eval(Vec2(0.25f, 0.25f)) == Color(1, 0, 0));
+  CHECK(t.eval(Vec2(0.75f, 0.75f)) == Color(1, 0, 0));
+  CHECK(t.eval(Vec2(0.75f, 0.25f)) == Color(0, 0, 1));
+}
+
+TEST_CASE("bitmap: (0, 0) is the top-left pixel; repeat, mirror and clamp wrap as named", "[core][texture]") {
+  test::TempDir dir;
+  Image img(4, 2);  // top row: 0.1, 0.2, 0.3, 0.4; bottom row: 0.5 .. 0.8 (red channel)
+  for (int y = 0; y < 2; ++y) {
+    for (int x = 0; x < 4; ++x) img.at(x, y) = Color(0.1f * float(1 + x + 4 * y), 0.0f, 1.0f);
+  }
+  const std::string path = dir.file("t.exr");
+  write_image(path, img);
+  const BitmapTexture nearest(path, TextureFilter::Nearest, TextureWrap::Repeat, UvTransform{}, false);
+  CHECK(nearest.width() == 4);
+  CHECK(nearest.eval(Vec2(0.125f, 0.25f)).x == Approx(0.1f));  // top-left pixel centre
+  CHECK(nearest.eval(Vec2(0.875f, 0.75f)).x == Approx(0.8f));  // bottom-right
+  CHECK(nearest.eval(Vec2(1.125f, 0.25f)).x == Approx(0.1f));  // repeat
+  const BitmapTexture mirror(path, TextureFilter::Nearest, TextureWrap::Mirror, UvTransform{}, false);
+  CHECK(mirror.eval(Vec2(1.125f, 0.25f)).x == Approx(0.4f));
+  const BitmapTexture clamp(path, TextureFilter::Nearest, TextureWrap::Clamp, UvTransform{}, false);
+  CHECK(clamp.eval(Vec2(1.6f, 0.25f)).x == Approx(0.4f));
+  CHECK(clamp.eval(Vec2(-0.6f, 0.75f)).x == Approx(0.5f));
+  // Bilinear halfway between the first two pixel centres of the top row.
+  const BitmapTexture bilinear(path, TextureFilter::Bilinear, TextureWrap::Clamp, UvTransform{}, false);
+  CHECK(bilinear.eval(Vec2(0.25f, 0.25f)).x == Approx(0.15f).margin(1e-4));
+  CHECK(bilinear.eval(Vec2(0.25f, 0.25f)).z == Approx(1.0f).margin(1e-4));
+}
+
+TEST_CASE("bitmap: 8-bit images are decoded from sRGB unless raw", "[core][texture]") {
+  test::TempDir dir;
+  Image img(1, 1);
+  img.pixels[0] = Color(0.5f);  // written as sRGB 8-bit: linear 0.5 -> 188/255 -> read back 0.5
+  const std::string path = dir.file("grey.png");
+  write_image(path, img);
+  const BitmapTexture decoded(path, TextureFilter::Nearest, TextureWrap::Repeat, UvTransform{}, false);
+  CHECK(decoded.eval(Vec2(0.5f)).x == Approx(0.5f).margin(0.01f));
+  const BitmapTexture raw(path, TextureFilter::Nearest, TextureWrap::Repeat, UvTransform{}, true);
+  CHECK(raw.eval(Vec2(0.5f)).x == Approx(188.0f / 255.0f).margin(0.01f));
+}
+
+namespace {
+LoadedScene load(const test::TempDir& dir, const std::string& objects, const std::string& materials) {
+  const std::string text = R"({"camera": {"position": [0, 0, -5], "look_at": [0, 0, 0]},
+    "materials": )" + materials + R"(, "objects": )" + objects + R"(,
+    "lights": [{"type": "point", "position": [0, 3, -3], "intensity": 1}]})";
+  return parse_scene(text, dir.file("s.json"), dir.path().string());
+}
+const char* kWhite = R"({"white": {"type": "diffuse"}})";
+}  // namespace
+
+TEST_CASE("sphere UVs: u = phi / 2 pi around z, v = theta / pi from +z", "[core][texture]") {
+  test::TempDir dir;
+  LoadedScene s = load(dir, R"([{"type": "sphere", "center": [1, 2, 3], "radius": 2, "material": "white"}])", kWhite);
+  SurfaceHit hit;
+  REQUIRE(s.scene->intersect(Ray{Vec3(1, 2, 10), Vec3(0, 0, -1)}, hit));  // the +z pole
+  CHECK(hit.sp.uv.y == Approx(0.0f).margin(1e-3));
+  REQUIRE(s.scene->intersect(Ray{Vec3(10, 2, 3), Vec3(-1, 0, 0)}, hit));  // +x on the equator
+  CHECK(hit.sp.uv.x == Approx(0.0f).margin(1e-3));
+  CHECK(hit.sp.uv.y == Approx(0.5f).margin(1e-3));
+  REQUIRE(s.scene->intersect(Ray{Vec3(1, 10, 3), Vec3(0, -1, 0)}, hit));  // +y: phi = 90 degrees
+  CHECK(hit.sp.uv.x == Approx(0.25f).margin(1e-3));
+}
+
+TEST_CASE("OBJ: vt becomes (u, 1 - v), vn is interpolated, face_normals turns it off", "[core][texture]") {
+  test::TempDir dir;
+  // A unit square in the z = 0 plane facing -z, with normals bent outwards along x.
+  dir.write("sq.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"
+                      "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
+                      "vn -0.6 0 -0.8\nvn 0.6 0 -0.8\nvn 0.6 0 -0.8\nvn -0.6 0 -0.8\n"
+                      "f 1/1/1 4/4/4 3/3/3\nf 1/1/1 3/3/3 2/2/2\n");
+  LoadedScene s = load(dir, R"([{"type": "mesh", "file": "sq.obj", "material": "white"}])", kWhite);
+  SurfaceHit hit;
+  REQUIRE(s.scene->intersect(Ray{Vec3(0.25f, 0.75f, -1), Vec3(0, 0, 1)}, hit));
+  CHECK(hit.sp.uv.x == Approx(0.25f).margin(1e-4));
+  CHECK(hit.sp.uv.y == Approx(0.25f).margin(1e-4));  // OBJ v = 0.75 is near the image's top
+  CHECK(hit.n.z == Approx(-1.0f));                    // geometric normal from the winding
+  // Halfway between x = 0 (nx -0.6) and x = 1 (nx 0.6) at x = 0.25: nx = -0.3, normalised.
+  const Vec3 expected = glm::normalize(Vec3(-0.3f, 0.0f, -0.8f));
+  CHECK(hit.frame.n.x == Approx(expected.x).margin(1e-4));
+  CHECK(hit.frame.n.z == Approx(expected.z).margin(1e-4));
+
+  LoadedScene flat = load(dir, R"([{"type": "mesh", "file": "sq.obj", "material": "white", "face_normals": true}])", kWhite);
+  REQUIRE(flat.scene->intersect(Ray{Vec3(0.25f, 0.75f, -1), Vec3(0, 0, 1)}, hit));
+  CHECK(hit.frame.n.z == Approx(-1.0f));
+  CHECK(hit.sp.uv.y == Approx(0.25f).margin(1e-4));  // UVs stay
+}
+
+TEST_CASE("quads carry UVs along their edges; a textured material reads them", "[core][texture]") {
+  test::TempDir dir;
+  LoadedScene s = load(dir, R"([{"type": "quad", "origin": [0, 0, 0], "edge1": [2, 0, 0], "edge2": [0, 4, 0], "material": "check"}])",
+                       R"({"check": {"type": "diffuse", "reflectance": {"type": "checkerboard", "color0": [0.8, 0, 0], "color1": [0, 0, 0.8]}}})");
+  SurfaceHit hit;
+  REQUIRE(s.scene->intersect(Ray{Vec3(0.5f, 3.0f, -1), Vec3(0, 0, 1)}, hit));
+  CHECK(hit.sp.uv.x == Approx(0.25f).margin(1e-4));
+  CHECK(hit.sp.uv.y == Approx(0.75f).margin(1e-4));
+  CHECK(hit.material->albedo(hit.sp) == Color(0, 0, 0.8f));
+  REQUIRE(s.scene->intersect(Ray{Vec3(1.5f, 3.0f, -1), Vec3(0, 0, 1)}, hit));
+  CHECK(hit.material->albedo(hit.sp) == Color(0.8f, 0, 0));
+}
+
+TEST_CASE("textures: missing and unreadable files, unknown types and keys are errors", "[core][texture]") {
+  test::TempDir dir;
+  const std::string quad = R"([{"type": "quad", "origin": [0, 0, 0], "edge1": [1, 0, 0], "edge2": [0, 1, 0], "material": "m"}])";
+  auto with = [&](const std::string& tex) {
+    return load(dir, quad, R"({"m": {"type": "diffuse", "reflectance": )" + tex + "}}");
+  };
+  CHECK_THROWS_WITH(with(R"({"type": "bitmap", "filename": "nope.png"})"),
+                    Contains("/materials/m/reflectance/filename") && Contains("tried") && Contains("nope.png"));
+  dir.write("garbage.png", "this is not a png");
+  CHECK_THROWS_WITH(with(R"({"type": "bitmap", "filename": "garbage.png"})"),
+                    Contains("/materials/m/reflectance/filename") && Contains("garbage.png"));
+  CHECK_THROWS_WITH(with(R"({"type": "noise"})"), Contains("unknown texture type \"noise\"") && Contains("checkerboard"));
+  CHECK_THROWS_WITH(with(R"({"type": "checkerboard", "colour0": 1})"), Contains("/materials/m/reflectance/colour0"));
+  CHECK_THROWS_WITH(with(R"({"type": "checkerboard", "to_uv": {"scale": [1, 2, 3]}})"), Contains("to_uv/scale"));
+  dir.write("bad.obj", "v nan 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  CHECK_THROWS_WITH(load(dir, R"([{"type": "mesh", "file": "bad.obj", "material": "white"}])", kWhite),
+                    Contains("bad.obj:1") && Contains("\"nan\" is not a finite number"));
+}
