@@ -52,8 +52,10 @@ float MicrofacetDistribution::lambda(const Vec3& w) const {
 }
 
 float MicrofacetDistribution::pdf(const Vec3& wo, const Vec3& m) const {
-  if (wo.z == 0.0f) return 0.0f;
-  return G1(wo) * std::abs(glm::dot(wo, m)) * D(m) / std::abs(wo.z);
+  // Only normals facing wo (or -wo from below) are visible: sample_visible returns no others.
+  const float wom = glm::dot(wo, m);
+  if (wo.z == 0.0f || wom * wo.z <= 0.0f) return 0.0f;
+  return G1(wo) * std::abs(wom) * D(m) / std::abs(wo.z);
 }
 
 Vec2 MicrofacetDistribution::sample_beckmann_slopes(float cos_theta, const Vec2& u) const {
