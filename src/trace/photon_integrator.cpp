@@ -124,7 +124,7 @@ Color PhotonIntegrator::indirect_at(const SurfaceHit& hit, const Vec3& wo, std::
 }
 
 Color PhotonIntegrator::final_gather(const Scene& scene, const SurfaceHit& hit, const Vec3& wo, Sampler& sampler,
-                                     std::vector<Neighbour>& scratch) const {
+                                     std::vector<Neighbour>& scratch, bool skip_delta) const {
   const int n = settings_.gather_rays;
   if (n <= 0) return Color(0.0f);
   const Vec3 wo_l = hit.frame.to_local(wo);
@@ -136,6 +136,7 @@ Color PhotonIntegrator::final_gather(const Scene& scene, const SurfaceHit& hit, 
     if (i < sx * sy) u = Vec2((float(i % sx) + u.x) / float(sx), (float(i / sx) + u.y) / float(sy));
     BsdfSample bs;
     if (!hit.material->sample(wo_l, u, sampler.next1d(), bs, hit.sp)) continue;
+    if (skip_delta && bs.delta) continue;  // the caller traces the delta lobes
     const Vec3 wi = hit.frame.to_world(bs.wi);
     if (hit.leaks(wi)) continue;
     Color throughput = bs.weight;
@@ -213,7 +214,20 @@ Color PhotonIntegrator::trace_eye(const Ray& start, const Scene& scene, Sampler&
       for (int i = 0; i < settings_.direct_samples; ++i) direct += estimate_direct(scene, hit, wo, sampler, ratio);
       L += beta * direct / float(settings_.direct_samples);
       if (!caustic_.empty()) L += beta * radiance_estimate(caustic_, hit, wo, caustic_est_, scratch);
-      L += beta * final_gather(scene, hit, wo, sampler, scratch);
+      // A delta lobe beside the diffuse one (plastic's coat): traced as the eye path goes on,
+      // while the final gather covers the other lobes only. Without splits left, the gather's
+      // delta samples carry it instead.
+      const bool trace_coat = splits_left > 0 && m.has(kBsdfSpecular);
+      L += beta * final_gather(scene, hit, wo, sampler, scratch, trace_coat);
+      if (trace_coat) {
+        BsdfSample coat[2];
+        const int n = m.specular_lobes(wo_l, coat, hit.sp);
+        for (int i = 0; i < n; ++i) {
+          const Vec3 wi = hit.frame.to_world(coat[i].wi);
+          if (is_black(coat[i].weight) || hit.leaks(wi)) continue;
+          L += beta * coat[i].weight * trace_eye(spawn_ray(hit.p, hit.n, wi), scene, sampler, depth + 1, splits_left - 1);
+        }
+      }
       return L;
     }
     BsdfSample lobes[2];

@@ -48,8 +48,9 @@ class PhotonIntegrator final : public Integrator {
   const EstimateSettings& caustic_estimate() const { return caustic_est_; }
 
  private:
+  // Final gathering by BSDF samples; with skip_delta, samples of delta lobes count 0.
   Color final_gather(const Scene& scene, const SurfaceHit& hit, const Vec3& wo, Sampler& sampler,
-                     std::vector<Neighbour>& scratch) const;
+                     std::vector<Neighbour>& scratch, bool skip_delta) const;
   // Camera paths split at the first kSplitLevels glass surfaces into reflection and refraction.
   static constexpr int kSplitLevels = 2;
   Color trace_eye(const Ray& ray, const Scene& scene, Sampler& sampler, int depth, int splits_left) const;

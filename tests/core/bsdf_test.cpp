@@ -16,6 +16,7 @@
 #include "core/bsdf/ior.h"
 #include "core/bsdf/microfacet.h"
 #include "core/bsdf/phong.h"
+#include "core/bsdf/plastic.h"
 #include "core/bsdf/twosided.h"
 #include "core/rng.h"
 #include "core/sampling.h"
@@ -35,7 +36,7 @@ constexpr int kSamples = 200000;
 // Chi-square tests in this file that are expected to accept (26 rough conductor, 16 rough
 // dielectric, 5 Phong, 2 Lambertian, 4 visible normals, 1 positive twin of the negative
 // controls); Sidak keeps 0.01 overall.
-constexpr int kChi2Tests = 26 + 16 + 5 + 2 + 4 + 1;
+constexpr int kChi2Tests = 26 + 16 + 5 + 2 + 4 + 1 + 6;
 const double kAlpha = test::sidak_alpha(0.01, kChi2Tests);
 
 // Histogram of directions in (theta, phi) cells of 2.5 x 2.5 degrees over the whole sphere.
@@ -49,6 +50,10 @@ Vec3 direction(double theta_deg, double phi_deg, bool below = false) {
 
 Vec3 spherical(double theta, double phi) {
   return Vec3(float(std::sin(theta) * std::cos(phi)), float(std::sin(theta) * std::sin(phi)), float(std::cos(theta)));
+}
+
+bool white_equal(const Material& a, const Material& b, const Vec3& wo, const Vec3& wi) {
+  return std::abs(a.eval(wo, wi).x - b.eval(wo, wi).x) <= 1e-6f * std::abs(b.eval(wo, wi).x);
 }
 
 std::string str(const Vec3& v) {
@@ -305,6 +310,59 @@ TEST_CASE("Phong: samples follow pdf, weights are f cos / pdf, energy at most kd
     const Color p = integrate_sphere([&](const Vec3& wi) { return Color(phong.pdf(wo, wi)); });
     CHECK(p.x == Approx(1.0).margin(1e-3));
   }
+}
+
+TEST_CASE("roughplastic: samples follow pdf, weights are f cos / pdf, a white one loses little energy", "[core][bsdf]") {
+  uint64_t seed = 350;
+  for (const MicrofacetType type : {MicrofacetType::GGX, MicrofacetType::Beckmann}) {
+    for (const double deg : {20.0, 70.0}) {
+      const Plastic white(Color(1.0f), Color(1.0f), 1.5f, false, MicrofacetDistribution(type, 0.2f, 0.2f));
+      const Vec3 wo = direction(deg, 10.0);
+      INFO(name(type) << " alpha 0.2, white, wo at " << deg << " degrees");
+      const BsdfReport r = check_bsdf(white, wo, ++seed);
+      require_consistent(r, false);
+      // The rough coat's transmittance is 1 minus its albedo, normalised by its average:
+      // lossless like the smooth one.
+      CHECK(r.energy.x == Approx(1.0).margin(5e-3));
+    }
+  }
+  const Plastic nonlinear(Color(0.8f, 0.4f, 0.1f), Color(1.0f), 1.5f, true, MicrofacetDistribution(MicrofacetType::GGX, 0.4f, 0.4f));
+  const Vec3 wo = direction(40.0, 300.0, /*below=*/true);
+  require_consistent(check_bsdf(nonlinear, wo, ++seed), false);
+}
+
+TEST_CASE("plastic: the coat reflects F, the base the rest; white plastic is lossless", "[core][bsdf]") {
+  // Smooth coat, white base: F(cos_o) in the mirror direction plus the diffuse part, whose
+  // albedo (1 - F(cos_o)) rho (1 - F_dr_ext) / (eta^2 (1 - F_dr_int)) is (1 - F(cos_o)) rho.
+  for (const double deg : {0.0, 30.0, 60.0, 80.0}) {
+    const Plastic white(Color(1.0f), Color(1.0f), 1.5f, false, std::nullopt);
+    const Vec3 wo = direction(deg, 45.0);
+    INFO(deg << " degrees");
+    BsdfSample coat;
+    REQUIRE(white.specular_lobes(wo, &coat) == 1);
+    CHECK(coat.wi.x == Approx(-wo.x));
+    const float F = fresnel_dielectric(wo.z, 1.5f);
+    CHECK(coat.weight.x == Approx(F));
+    const Color diffuse = integrate_sphere([&](const Vec3& wi) { return white.eval(wo, wi) * std::abs(wi.z); });
+    CHECK(diffuse.x + F == Approx(1.0).margin(2e-3));
+    // Sampling: the mean weight over coat and base samples is the same total.
+    Rng rng(uint64_t(deg) + 7);
+    double sum = 0;
+    const int n = 100000;
+    for (int i = 0; i < n; ++i) {
+      BsdfSample s;
+      if (white.sample(wo, next2(rng), rng.next_float(), s)) sum += s.weight.x;
+    }
+    CHECK(sum / n == Approx(1.0).margin(0.01));
+  }
+  // nonlinear: rho / (1 - rho F_dr) instead of rho / (1 - F_dr): darker (more saturated) for
+  // rho < 1, the same at 1.
+  const Plastic lin(Color(0.5f), Color(1.0f), 1.5f, false, std::nullopt);
+  const Plastic non(Color(0.5f), Color(1.0f), 1.5f, true, std::nullopt);
+  const Vec3 wo = direction(30.0, 0.0), wi = direction(40.0, 180.0);
+  CHECK(non.eval(wo, wi).x < lin.eval(wo, wi).x);
+  CHECK(white_equal(Plastic(Color(1.0f), Color(1.0f), 1.5f, true, std::nullopt), Plastic(Color(1.0f), Color(1.0f), 1.5f, false, std::nullopt), wo, wi));
+  CHECK(lin.flags() == (kBsdfDiffuse | kBsdfSpecular | kBsdfReflection));
 }
 
 TEST_CASE("Lambertian: samples follow pdf on both sides, weight is the albedo", "[core][bsdf]") {

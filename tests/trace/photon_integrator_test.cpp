@@ -67,7 +67,7 @@ TEST_CASE("photon: matches the path tracer on the glossy Cornell box (Phong floo
 
 TEST_CASE("photon: matches the path tracer on the material spheres", "[trace][photon][reference]") {
   // The rough metals' highlights of the sun need more camera samples than the diffuse scenes.
-  check_photon_against_path("scenes/material-spheres.json", 96, 36, 4096, 256, R"({"gather_rays": 16})", 0.06);
+  check_photon_against_path("scenes/material-spheres.json", 96, 32, 4096, 256, R"({"gather_rays": 16})", 0.06);
 }
 
 TEST_CASE("photon: caustic centre under a glass sphere matches the path tracer within 10 %", "[trace][photon][caustic]") {

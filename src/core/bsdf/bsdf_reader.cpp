@@ -6,6 +6,7 @@
 #include "core/bsdf/diffuse.h"
 #include "core/bsdf/ior.h"
 #include "core/bsdf/phong.h"
+#include "core/bsdf/plastic.h"
 #include "core/bsdf/twosided.h"
 #include "core/textures/texture_reader.h"
 
@@ -91,8 +92,8 @@ void check_albedo(const Block& b, const char* key, const ColorParam& c, std::vec
 }  // namespace
 
 const char* known_material_types() {
-  return "diffuse, conductor, roughconductor, dielectric, thindielectric, roughdielectric, phong, twosided, "
-         "mirror, glass";
+  return "diffuse, conductor, roughconductor, dielectric, thindielectric, roughdielectric, plastic, roughplastic, "
+         "phong, twosided, mask, mirror, glass";
 }
 
 std::unique_ptr<Material> read_material(const MaterialContext& ctx, const json& m, const std::string& p) {
@@ -137,6 +138,20 @@ std::unique_ptr<Material> read_material(const MaterialContext& ctx, const json& 
   } else if (type == "roughdielectric") {
     r.check_object(m, p, {"type", "int_ior", "ext_ior", "distribution", "alpha", "alpha_u", "alpha_v", "emission"});
     mat = std::make_unique<RoughDielectric>(b.distribution(), b.eta(1.5046f));
+  } else if (type == "plastic" || type == "roughplastic") {
+    const bool rough = type == "roughplastic";
+    if (rough) {
+      r.check_object(m, p, {"type", "diffuse_reflectance", "specular_reflectance", "int_ior", "ext_ior", "nonlinear",
+                            "distribution", "alpha", "emission"});
+    } else {
+      r.check_object(m, p, {"type", "diffuse_reflectance", "specular_reflectance", "int_ior", "ext_ior", "nonlinear", "emission"});
+    }
+    const ColorParam kd = b.param("diffuse_reflectance", Color(0.5f));
+    check_albedo(b, "diffuse_reflectance", kd, warnings);
+    const bool nonlinear = b.has("nonlinear") && r.boolean(m["nonlinear"], b.at("nonlinear"));
+    std::optional<MicrofacetDistribution> dist;
+    if (rough) dist = b.distribution();
+    mat = std::make_unique<Plastic>(kd, b.param("specular_reflectance", Color(1.0f)), b.eta(1.49f), nonlinear, dist);
   } else if (type == "phong") {
     r.check_object(m, p, {"type", "diffuse_reflectance", "specular_reflectance", "exponent", "emission"});
     const ColorParam kd = b.param("diffuse_reflectance", Color(0.5f));

@@ -56,12 +56,8 @@ bool Phong::sample(const Vec3& wo_in, const Vec2& u, float u_lobe, BsdfSample& s
     wi = sample_cosine_hemisphere(u);
     s.lobe = kBsdfDiffuse | kBsdfReflection;
   }
-  if (wi.z <= 0.0f) return false;
-  s.pdf = pdf(wo, wi, sp);
-  if (!(s.pdf > 0.0f)) return false;
-  s.weight = eval(wo, wi, sp) * (wi.z / s.pdf);
-  s.wi = below ? flip_z(wi) : wi;
-  s.delta = false;
+  if (!complete_sample(*this, wo, wi, sp, s)) return false;
+  if (below) s.wi = flip_z(s.wi);
   return true;
 }
 

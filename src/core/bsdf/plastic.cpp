@@ -1,0 +1,162 @@
+// Smooth and rough plastic.
+#include "core/bsdf/plastic.h"
+#include "core/bsdf/diffuse.h"
+#include "core/bsdf/fresnel.h"
+#include "core/sampling.h"
+
+namespace caustica {
+namespace {
+constexpr int kAlbedoTable = 64;
+
+// Diffuse reflectance of a boundary for light from the side where the relative index is eta:
+// the cosine-weighted hemispherical average of Fresnel, 2 int F(cos) cos d(cos).
+float diffuse_fresnel(float eta) {
+  const int n = 2048;
+  double sum = 0;
+  for (int i = 0; i < n; ++i) {
+    const double c = (i + 0.5) / n;
+    sum += double(fresnel_dielectric(float(c), eta)) * 2.0 * c / n;
+  }
+  return float(sum);
+}
+}  // namespace
+
+Plastic::Plastic(const ColorParam& diffuse, const ColorParam& specular, float eta, bool nonlinear,
+                 std::optional<MicrofacetDistribution> dist)
+    : diffuse_(diffuse), specular_(specular), eta_(eta), nonlinear_(nonlinear), dist_(dist) {
+  fdr_internal_ = diffuse_fresnel(1.0f / eta_);
+  if (dist_) {
+    // The rough coat's directional albedo E(cos) = integral of F D G / (4 cos_o) over wi,
+    // estimated with a fixed stratified set of visible normals (deterministic).
+    rough_albedo_.resize(kAlbedoTable + 1);
+    const int m = 32;
+    for (int k = 0; k <= kAlbedoTable; ++k) {
+      const float c = std::max(1e-3f, float(k) / kAlbedoTable);
+      const Vec3 wo(std::sqrt(1.0f - c * c), 0.0f, c);
+      double sum = 0;
+      for (int i = 0; i < m; ++i) {
+        for (int j = 0; j < m; ++j) {
+          const Vec3 h = dist_->sample_visible(wo, Vec2((i + 0.5f) / m, (j + 0.5f) / m));
+          const float woh = glm::dot(wo, h);
+          const Vec3 wi = reflect(wo, h);
+          if (woh <= 0.0f || wi.z <= 0.0f) continue;
+          sum += double(fresnel_dielectric(woh, eta_)) * double(dist_->G(wo, wi) / dist_->G1(wo));
+        }
+      }
+      rough_albedo_[size_t(k)] = float(sum / (m * m));
+    }
+  }
+  // The coat's diffuse reflectance from outside: 2 integral of its reflectance cos d(cos).
+  const int n = 1024;
+  double sum = 0;
+  for (int i = 0; i < n; ++i) {
+    const double c = (i + 0.5) / n;
+    sum += double(coat_reflectance(float(c))) * 2.0 * c / n;
+  }
+  fdr_external_ = float(sum);
+}
+
+uint32_t Plastic::flags() const {
+  uint32_t f = kBsdfReflection | (dist_ ? kBsdfGlossy : kBsdfSpecular);
+  if (!diffuse_.is_black()) f |= kBsdfDiffuse;
+  return f;
+}
+
+float Plastic::coat_reflectance(float cos_theta) const {
+  cos_theta = std::clamp(cos_theta, 0.0f, 1.0f);
+  if (!dist_) return fresnel_dielectric(cos_theta, eta_);
+  const float x = cos_theta * kAlbedoTable;
+  const int i = std::min(int(x), kAlbedoTable - 1);
+  const float t = x - float(i);
+  return (1.0f - t) * rough_albedo_[size_t(i)] + t * rough_albedo_[size_t(i) + 1];
+}
+
+float Plastic::specular_probability(float cos_o, const ShadingPoint& sp) const {
+  // The coat's share by its reflectance and tint against the transmitted diffuse part.
+  const float s = coat_reflectance(cos_o) * average(specular_.at(sp.uv));
+  const float d = (1.0f - coat_reflectance(cos_o)) * average(diffuse_.at(sp.uv));
+  return s + d > 0.0f ? s / (s + d) : 0.0f;
+}
+
+Color Plastic::diffuse_eval(const Vec3& wo, const Vec3& wi, const ShadingPoint& sp) const {
+  // rho / (pi (1 - F_dr_ext)) is Mitsuba's rho / (pi eta^2 (1 - F_dr_int)) for a smooth coat;
+  // with the rough coat's own external diffuse reflectance it stays lossless for rho = 1.
+  const Color rho = diffuse_.at(sp.uv);
+  const Color base = nonlinear_ ? rho * (1.0f - fdr_internal_) / (Color(1.0f) - rho * fdr_internal_) : rho;
+  const float t = (1.0f - coat_reflectance(wi.z)) * (1.0f - coat_reflectance(wo.z));
+  return base * (t * kInvPi / (1.0f - fdr_external_));
+}
+
+Color Plastic::coat_eval(const Vec3& wo, const Vec3& wi, const ShadingPoint& sp) const {
+  if (!dist_) return Color(0.0f);
+  const Vec3 h = glm::normalize(wo + wi);
+  const float d = dist_->D(h);
+  if (d <= 0.0f) return Color(0.0f);
+  return specular_.at(sp.uv) * (fresnel_dielectric(glm::dot(wo, h), eta_) * d * dist_->G(wo, wi) / (4.0f * wo.z * wi.z));
+}
+
+float Plastic::coat_pdf(const Vec3& wo, const Vec3& wi) const {
+  if (!dist_) return 0.0f;
+  const Vec3 h = glm::normalize(wo + wi);
+  const float woh = glm::dot(wo, h);
+  return woh > 0.0f ? dist_->pdf(wo, h) / (4.0f * woh) : 0.0f;
+}
+
+Color Plastic::eval(const Vec3& wo_in, const Vec3& wi_in, const ShadingPoint& sp) const {
+  if (wo_in.z * wi_in.z <= 0.0f) return Color(0.0f);
+  const Vec3 wo = wo_in.z < 0 ? flip_z(wo_in) : wo_in, wi = wo_in.z < 0 ? flip_z(wi_in) : wi_in;
+  return diffuse_eval(wo, wi, sp) + coat_eval(wo, wi, sp);
+}
+
+float Plastic::pdf(const Vec3& wo_in, const Vec3& wi_in, const ShadingPoint& sp) const {
+  if (wo_in.z * wi_in.z <= 0.0f) return 0.0f;
+  const Vec3 wo = wo_in.z < 0 ? flip_z(wo_in) : wo_in, wi = wo_in.z < 0 ? flip_z(wi_in) : wi_in;
+  const float p = specular_probability(wo.z, sp);
+  return p * coat_pdf(wo, wi) + (1.0f - p) * wi.z * kInvPi;
+}
+
+bool Plastic::sample(const Vec3& wo_in, const Vec2& u, float u_lobe, BsdfSample& s, const ShadingPoint& sp) const {
+  if (wo_in.z == 0.0f) return false;
+  const bool below = wo_in.z < 0;
+  const Vec3 wo = below ? flip_z(wo_in) : wo_in;
+  const float p = specular_probability(wo.z, sp);
+  if (u_lobe < p && !dist_) {
+    // The smooth coat: a delta lobe chosen with probability p.
+    s.wi = reflect_local(wo);
+    s.weight = specular_.at(sp.uv) * (coat_reflectance(wo.z) / p);
+    s.pdf = 0.0f;
+    s.delta = true;
+    s.lobe = kBsdfSpecular | kBsdfReflection;
+  } else {
+    Vec3 wi;
+    if (u_lobe < p) {
+      const Vec3 h = dist_->sample_visible(wo, u);
+      wi = reflect(wo, h);
+      s.lobe = kBsdfGlossy | kBsdfReflection;
+    } else {
+      wi = sample_cosine_hemisphere(u);
+      s.lobe = kBsdfDiffuse | kBsdfReflection;
+    }
+    if (!complete_sample(*this, wo, wi, sp, s)) return false;
+  }
+  if (below) s.wi = flip_z(s.wi);
+  return true;
+}
+
+int Plastic::specular_lobes(const Vec3& wo, BsdfSample* out, const ShadingPoint& sp) const {
+  // The coat's mirror reflection (for a rough coat, its smooth limit).
+  if (wo.z == 0.0f) return 0;
+  out->wi = reflect_local(wo);
+  out->weight = specular_.at(sp.uv) * fresnel_dielectric(std::abs(wo.z), eta_);
+  out->pdf = 0.0f;
+  out->delta = true;
+  out->lobe = kBsdfSpecular | kBsdfReflection;
+  return 1;
+}
+
+Color Plastic::albedo(const ShadingPoint& sp) const {
+  const float f = coat_reflectance(1.0f);
+  return specular_.at(sp.uv) * f + diffuse_.at(sp.uv) * (1.0f - f);
+}
+
+}  // namespace caustica
