@@ -54,6 +54,7 @@ class Material {
   virtual int specular_lobes(const Vec3& /*wo*/, BsdfSample* /*out*/, const ShadingPoint& = {}) const { return 0; }
   // The probability that a ray stops at the surface (Mitsuba's `mask`); 1 for opaque ones.
   virtual float opacity(const ShadingPoint& = {}) const { return 1.0f; }
+  virtual bool has_mask() const { return false; }
 
   bool has(uint32_t flag) const { return (flags() & flag) != 0; }
   // Only delta lobes: no direction can be evaluated, only sampled.

@@ -1,5 +1,7 @@
 // Scene assembly and ray queries.
 #include "core/scene.h"
+#include <cstring>
+#include "core/rng.h"
 
 namespace caustica {
 namespace {
@@ -16,6 +18,8 @@ Vec3 barycentrics(const Primitive& t, const Vec3& p) {
 }  // namespace
 
 void Scene::build(std::vector<Primitive> prims) {
+  has_masks_ = false;
+  for (const auto& m : materials) has_masks_ = has_masks_ || m->has_mask();
   bvh_.build(std::move(prims));
   bounds_ = bvh_.bounds();
   for (const auto& light : lights) bounds_.extend(light->bounds());
@@ -33,7 +37,46 @@ void Scene::build(std::vector<Primitive> prims) {
   light_distribution_ = Distribution1D(powers.data(), powers.size());
 }
 
-bool Scene::intersect(const Ray& ray, SurfaceHit& hit) const {
+bool Scene::intersect(const Ray& ray_in, SurfaceHit& hit) const {
+  if (!has_masks_) return intersect_opaque(ray_in, hit);
+  // Masked surfaces let a ray through with probability 1 - opacity, decided by a hash of the
+  // ray and the hit (the same for any thread count); the ray then goes on beyond the hit.
+  Ray ray = ray_in;
+  float travelled = 0.0f;
+  for (int pass = 0; pass < 256; ++pass) {
+    if (!intersect_opaque(ray, hit)) return false;
+    const float alpha = hit.material->opacity(hit.sp);
+    if (alpha >= 1.0f) {
+      hit.t += travelled;
+      return true;
+    }
+    uint32_t bits[7];
+    std::memcpy(bits, &ray.origin, sizeof(float) * 3);
+    std::memcpy(bits + 3, &ray.dir, sizeof(float) * 3);
+    std::memcpy(bits + 6, &hit.t, sizeof(float));
+    const uint64_t h = hash_seed((uint64_t(bits[0]) << 32) | bits[1], (uint64_t(bits[2]) << 32) | bits[3],
+                                 (uint64_t(bits[4]) << 32 | bits[5]) ^ (uint64_t(bits[6]) << 16));
+    const float u = float(h >> 40) * 0x1.0p-24f;
+    if (u < alpha) {
+      hit.t += travelled;
+      return true;
+    }
+    const Vec3 origin = offset_origin(hit.p, hit.n, ray.dir);
+    const float step = glm::length(origin - ray.origin);
+    travelled += step;
+    ray = Ray{origin, ray.dir, ray.tmax - step};
+    if (!(ray.tmax > 0.0f)) return false;
+  }
+  return false;
+}
+
+bool Scene::occluded(const Ray& ray) const {
+  if (!has_masks_) return bvh_.occluded(ray);
+  SurfaceHit hit;
+  return intersect(ray, hit);
+}
+
+bool Scene::intersect_opaque(const Ray& ray, SurfaceHit& hit) const {
   Hit h;
   if (!bvh_.intersect(ray, h)) return false;
   const Primitive& prim = bvh_.primitives()[h.prim];

@@ -68,7 +68,8 @@ class Scene {
   // Builds the BVH over the primitives and the light-selection distribution (by power).
   void build(std::vector<Primitive> prims);
   bool intersect(const Ray& ray, SurfaceHit& hit) const;
-  bool occluded(const Ray& ray) const { return bvh_.occluded(ray); }
+  // Shadow rays: any hit before ray.tmax, masked surfaces passed as intersect() passes them.
+  bool occluded(const Ray& ray) const;
   // Chooses a light in proportion to its power.
   const Light* sample_light(float u, float& pmf) const;
   float light_pmf(size_t i) const { return light_distribution_.pmf(i); }
@@ -85,6 +86,8 @@ class Scene {
   Bvh bvh_;
   Distribution1D light_distribution_;
   std::vector<size_t> environment_;  // indices of lights that escaped rays see
+  bool has_masks_ = false;           // some material is not fully opaque everywhere
+  bool intersect_opaque(const Ray& ray, SurfaceHit& hit) const;
   Bounds bounds_;
 };
 

@@ -73,3 +73,21 @@ TEST_CASE("constant environment: a diffuse sphere reads rho L, the background L,
   const auto r = render_text(sky, "photon", "{}", 1, 4, 4);
   CHECK(r.image.mean().y == Approx(1.0f));
 }
+
+TEST_CASE("mask: a quarter-opaque blocker passes three quarters of the light, in path and photon", "[trace][mask]") {
+  // A directional light straight down; a masked quad (opacity 0.25, black BSDF) hovers over the
+  // part of the floor the camera sees. The floor reads rho / pi * E * 0.75.
+  const std::string scene = R"({
+    "camera": {"position": [0, 4, 0], "look_at": [0, 0, 0], "up": [0, 0, 1], "fov": 2},
+    "materials": {"floor": {"type": "diffuse", "reflectance": 0.5},
+                  "veil": {"type": "mask", "opacity": 0.25, "bsdf": {"type": "diffuse", "reflectance": 0}}},
+    "objects": [{"type": "quad", "origin": [-50, 0, -50], "edge1": [0, 0, 100], "edge2": [100, 0, 0], "material": "floor"},
+                {"type": "quad", "origin": [-5, 1, -5], "edge1": [0, 0, 10], "edge2": [10, 0, 0], "material": "veil"}],
+    "lights": [{"type": "directional", "direction": [0, -1, 0], "irradiance": 4}]})";
+  for (const char* integrator : {"path", "photon"}) {
+    INFO(integrator);
+    const auto r = render_text(scene, integrator, "{}", 1024, 8, 8);
+    // Camera rays also cross the veil: 0.75 of them reach the floor, which gets 0.75 of the light.
+    CHECK(r.image.mean().x == Approx(0.5 / 3.14159265358979 * 4.0 * 0.75 * 0.75).epsilon(0.03));
+  }
+}

@@ -5,6 +5,7 @@
 #include "core/bsdf/dielectric.h"
 #include "core/bsdf/diffuse.h"
 #include "core/bsdf/ior.h"
+#include "core/bsdf/mask.h"
 #include "core/bsdf/phong.h"
 #include "core/bsdf/plastic.h"
 #include "core/bsdf/twosided.h"
@@ -160,6 +161,12 @@ std::unique_ptr<Material> read_material(const MaterialContext& ctx, const json& 
       r.warn(p, "diffuse_reflectance + specular_reflectance above 1 creates energy", warnings);
     }
     mat = std::make_unique<Phong>(kd, ks, b.number("exponent", 30.0f, 0.0, 1e6));
+  } else if (type == "mask") {
+    r.check_object(m, p, {"type", "bsdf", "opacity", "emission"});
+    ctx.nested.push_back(read_material(ctx, r.require(m, p, "bsdf"), b.at("bsdf")));
+    const ColorParam opacity = b.param("opacity", Color(0.5f));
+    if (!opacity.texture && max_component(opacity.value) > 1.0f) r.fail(b.at("opacity"), "opacity must lie in [0, 1]");
+    mat = std::make_unique<Mask>(ctx.nested.back().get(), opacity);
   } else if (type == "twosided") {
     r.check_object(m, p, {"type", "bsdf", "emission"});
     const json& inner = r.require(m, p, "bsdf");
