@@ -38,7 +38,8 @@ struct SurfaceHit {
   ShadingPoint sp;  // texture coordinates
   // A direction that the shading frame and the geometric normal put on different sides: the
   // light leaks that shading normals cause. Integrators drop such light and BSDF samples, as
-  // Mitsuba 0.6's "strict normals" does.
+  // Mitsuba's path tracers do with "strict normals" (Mitsuba 0.6's option; pbrt-v4 and
+  // Mitsuba 3 evaluate in the shading frame alone and accept the leak).
   bool leaks(const Vec3& w) const { return glm::dot(w, n) * glm::dot(w, frame.n) <= 0.0f; }
 };
 
