@@ -63,6 +63,15 @@ struct Frame {
     s = Vec3(1.0f + sign * n.x * n.x * a, sign * b, -sign * n.x);
     t = Vec3(b, sign + n.y * n.y * a, -n.y);
   }
+  // A frame whose s axis follows `tangent` (projected onto the plane of n), for anisotropic
+  // BSDFs oriented by the surface's dp/du as in Mitsuba; falls back to Frame(n).
+  Frame(const Vec3& normal, const Vec3& tangent) : Frame(normal) {
+    const Vec3 ts = tangent - normal * glm::dot(normal, tangent);
+    const float len = glm::length(ts);
+    if (!(len > 1e-6f) || !std::isfinite(len)) return;
+    s = ts / len;
+    t = glm::cross(n, s);
+  }
   Vec3 to_local(const Vec3& v) const { return Vec3(glm::dot(v, s), glm::dot(v, t), glm::dot(v, n)); }
   Vec3 to_world(const Vec3& v) const { return v.x * s + v.y * t + v.z * n; }
 };

@@ -90,6 +90,7 @@ bool Scene::intersect_opaque(const Ray& ray, SurfaceHit& hit) const {
   hit.material = materials[prim.material].get();
   hit.light = prim.light;
   Vec3 ns = hit.n;
+  Vec3 dpdu(0.0f);  // orients anisotropic BSDFs, as Mitsuba's shading frames do
   hit.sp.uv = Vec2(0.0f);
   if (prim.kind == ShapeKind::Sphere) {
     // Mitsuba's sphere parameterisation: u = phi / 2 pi around z, v = theta / pi from +z.
@@ -97,10 +98,16 @@ bool Scene::intersect_opaque(const Ray& ray, SurfaceHit& hit) const {
     float u = std::atan2(d.y, d.x) * (0.5f * kInvPi);
     if (u < 0.0f) u += 1.0f;
     hit.sp.uv = Vec2(u, std::acos(std::clamp(d.z, -1.0f, 1.0f)) * kInvPi);
+    dpdu = Vec3(-d.y, d.x, 0.0f);
   } else if (prim.attributes != kNoAttributes) {
     const TriangleAttributes& a = attributes[prim.attributes];
     const Vec3 b = barycentrics(prim, hit.p);
-    if (a.has_uvs) hit.sp.uv = b.x * a.uv[0] + b.y * a.uv[1] + b.z * a.uv[2];
+    if (a.has_uvs) {
+      hit.sp.uv = b.x * a.uv[0] + b.y * a.uv[1] + b.z * a.uv[2];
+      const Vec2 duv1 = a.uv[1] - a.uv[0], duv2 = a.uv[2] - a.uv[0];
+      const float det = duv1.x * duv2.y - duv1.y * duv2.x;
+      if (std::abs(det) > 1e-12f) dpdu = (duv2.y * (prim.p1 - prim.p0) - duv1.y * (prim.p2 - prim.p0)) / det;
+    }
     if (a.has_normals) {
       const Vec3 n = b.x * a.n[0] + b.y * a.n[1] + b.z * a.n[2];
       const float len = glm::length(n);
@@ -108,7 +115,7 @@ bool Scene::intersect_opaque(const Ray& ray, SurfaceHit& hit) const {
       if (glm::dot(ns, hit.n) < 0.0f) ns = -ns;  // the winding decides the side; the normals only bend it
     }
   }
-  hit.frame = Frame(ns);
+  hit.frame = Frame(ns, dpdu);
   return true;
 }
 

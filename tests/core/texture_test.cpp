@@ -143,3 +143,16 @@ TEST_CASE("textures: missing and unreadable files, unknown types and keys are er
   CHECK_THROWS_WITH(load(dir, R"([{"type": "mesh", "file": "bad.obj", "material": "white"}])", kWhite),
                     Contains("bad.obj:1") && Contains("\"nan\" is not a finite number"));
 }
+
+TEST_CASE("shading frames follow dp/du: along phi on spheres, along edge1 on quads", "[core][texture]") {
+  test::TempDir dir;
+  LoadedScene s = load(dir, R"([{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "white"},
+                                {"type": "quad", "origin": [5, -1, 0], "edge1": [0, 2, 0], "edge2": [2, 0, 0], "material": "white"}])", kWhite);
+  SurfaceHit hit;
+  REQUIRE(s.scene->intersect(Ray{Vec3(10, 0, 0), Vec3(-1, 0, 0)}, hit));  // +x on the sphere's equator
+  CHECK(std::abs(hit.frame.s.y) == Approx(1.0f).margin(1e-5));              // phi grows towards +y
+  CHECK(glm::dot(hit.frame.s, hit.frame.n) == Approx(0.0f).margin(1e-5));
+  REQUIRE(s.scene->intersect(Ray{Vec3(5.5f, 0, -3), Vec3(0, 0, 1)}, hit));
+  CHECK(hit.frame.s.y == Approx(1.0f).margin(1e-5));  // edge1 runs along +y
+  CHECK(std::abs(hit.frame.t.x) == Approx(1.0f).margin(1e-5));
+}
