@@ -28,6 +28,8 @@ $C render scenes/cornell-spheres.json --integrator photon --width 400 --height 4
   -o "$out/cornell-spheres.png"
 $C render scenes/caustic-ring.json --integrator photon --width 400 --height 400 --spp 32 --seed 1 -q \
   -o "$out/caustic-ring.png"
+$C render scenes/material-spheres.json --integrator photon --width 816 --height 272 --spp 32 --seed 1 -q \
+  -o "$out/material-spheres.png"
 
 echo "gallery: photon maps"
 $C photons scenes/cornell-spheres.json --map both --width 320 --height 320 --seed 1 -q \

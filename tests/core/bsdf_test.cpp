@@ -331,7 +331,7 @@ TEST_CASE("roughplastic: samples follow pdf, weights are f cos / pdf, a white on
   require_consistent(check_bsdf(nonlinear, wo, ++seed), false);
 }
 
-TEST_CASE("plastic: the coat reflects F, the base the rest; white plastic is lossless", "[core][bsdf]") {
+TEST_CASE("plastic: the coat reflects F, the base the rest, white plastic is lossless", "[core][bsdf]") {
   // Smooth coat, white base: F(cos_o) in the mirror direction plus the diffuse part, whose
   // albedo (1 - F(cos_o)) rho (1 - F_dr_ext) / (eta^2 (1 - F_dr_int)) is (1 - F(cos_o)) rho.
   for (const double deg : {0.0, 30.0, 60.0, 80.0}) {
@@ -586,7 +586,7 @@ TEST_CASE("Microfacet: sample_visible follows the visible-normal density", "[cor
   }
 }
 
-TEST_CASE("Microfacet: G1 in (0, 1], 1 at normal incidence, decreasing towards grazing", "[core][bsdf]") {
+TEST_CASE("Microfacet: G1 between 0 and 1, 1 at normal incidence, decreasing towards grazing", "[core][bsdf]") {
   Rng rng(800);
   for (const MicrofacetType type : {MicrofacetType::GGX, MicrofacetType::Beckmann}) {
     for (const AlphaPair a : kAlphas) {

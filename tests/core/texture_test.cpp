@@ -29,7 +29,7 @@ TEST_CASE("checkerboard: Mitsuba's colours, color0 where (u > 1/2) == (v > 1/2)"
   CHECK(t.eval(Vec2(0.75f, 0.25f)) == Color(0, 0, 1));
 }
 
-TEST_CASE("bitmap: (0, 0) is the top-left pixel; repeat, mirror and clamp wrap as named", "[core][texture]") {
+TEST_CASE("bitmap: (0, 0) is the top-left pixel, repeat, mirror and clamp wrap as named", "[core][texture]") {
   test::TempDir dir;
   Image img(4, 2);  // top row: 0.1, 0.2, 0.3, 0.4; bottom row: 0.5 .. 0.8 (red channel)
   for (int y = 0; y < 2; ++y) {
@@ -112,7 +112,7 @@ TEST_CASE("OBJ: vt becomes (u, 1 - v), vn is interpolated, face_normals turns it
   CHECK(hit.sp.uv.y == Approx(0.25f).margin(1e-4));  // UVs stay
 }
 
-TEST_CASE("quads carry UVs along their edges; a textured material reads them", "[core][texture]") {
+TEST_CASE("quads carry UVs along their edges, a textured material reads them", "[core][texture]") {
   test::TempDir dir;
   LoadedScene s = load(dir, R"([{"type": "quad", "origin": [0, 0, 0], "edge1": [2, 0, 0], "edge2": [0, 4, 0], "material": "check"}])",
                        R"({"check": {"type": "diffuse", "reflectance": {"type": "checkerboard", "color0": [0.8, 0, 0], "color1": [0, 0, 0.8]}}})");
