@@ -23,13 +23,15 @@ bool SpecularMaterial::sample(const Vec3& wo, const Vec2&, float u_lobe, BsdfSam
   return true;
 }
 
-bool complete_sample(const Material& m, const Vec3& wo, const Vec3& wi, const ShadingPoint& sp, BsdfSample& s) {
+bool complete_sample(const Material& m, const Vec3& wo, const Vec3& wi, uint32_t lobe, bool below,
+                     const ShadingPoint& sp, BsdfSample& s) {
   if (wi.z <= 0.0f) return false;
   s.pdf = m.pdf(wo, wi, sp);
   if (!(s.pdf > 0.0f)) return false;
   s.weight = m.eval(wo, wi, sp) * (wi.z / s.pdf);
-  s.wi = wi;
+  s.wi = below ? Vec3(wi.x, wi.y, -wi.z) : wi;
   s.delta = false;
+  s.lobe = lobe;
   return true;
 }
 

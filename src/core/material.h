@@ -70,8 +70,10 @@ class Material {
 
 // Completes a sample of a non-delta lobe once its direction wi (upper hemisphere, wo's side
 // mirrored up) is chosen: the density and weight come from the BSDF's own pdf() and eval(), so
-// mixtures of lobes stay consistent. False when wi is below or has no density.
-bool complete_sample(const Material& m, const Vec3& wo, const Vec3& wi, const ShadingPoint& sp, BsdfSample& s);
+// mixtures of lobes stay consistent; `lobe` is recorded, and the direction mirrored back down
+// when wo was `below`. False when wi is below or has no density.
+bool complete_sample(const Material& m, const Vec3& wo, const Vec3& wi, uint32_t lobe, bool below,
+                     const ShadingPoint& sp, BsdfSample& s);
 
 // A BSDF with delta lobes only (mirrors, smooth glass): nothing to evaluate; sample() picks
 // one of specular_lobes() in proportion to its weight (at most two, whose weights sum to 1 or

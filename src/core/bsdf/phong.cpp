@@ -44,21 +44,18 @@ bool Phong::sample(const Vec3& wo_in, const Vec2& u, float u_lobe, BsdfSample& s
   if (wo_in.z == 0.0f || p + average(kd_.at(sp.uv)) <= 0.0f) return false;
   const bool below = wo_in.z < 0;
   const Vec3 wo = below ? flip_z(wo_in) : wo_in;
+  const bool glossy = u_lobe < p;
   Vec3 wi;
-  if (u_lobe < p) {
+  if (glossy) {
     // cos^n-distributed around the mirror direction: cos a = u^(1 / (n + 1)).
     const float cos_a = std::pow(u.x, 1.0f / (exponent_ + 1.0f));
     const float sin_a = std::sqrt(std::max(0.0f, 1.0f - cos_a * cos_a));
     const float phi = 2.0f * kPi * u.y;
     wi = Frame(reflect_local(wo)).to_world(Vec3(sin_a * std::cos(phi), sin_a * std::sin(phi), cos_a));
-    s.lobe = kBsdfGlossy | kBsdfReflection;
   } else {
     wi = sample_cosine_hemisphere(u);
-    s.lobe = kBsdfDiffuse | kBsdfReflection;
   }
-  if (!complete_sample(*this, wo, wi, sp, s)) return false;
-  if (below) s.wi = flip_z(s.wi);
-  return true;
+  return complete_sample(*this, wo, wi, kBsdfReflection | (glossy ? kBsdfGlossy : kBsdfDiffuse), below, sp, s);
 }
 
 }  // namespace caustica

@@ -127,20 +127,12 @@ bool Plastic::sample(const Vec3& wo_in, const Vec2& u, float u_lobe, BsdfSample&
     s.pdf = 0.0f;
     s.delta = true;
     s.lobe = kBsdfSpecular | kBsdfReflection;
-  } else {
-    Vec3 wi;
-    if (u_lobe < p) {
-      const Vec3 h = dist_->sample_visible(wo, u);
-      wi = reflect(wo, h);
-      s.lobe = kBsdfGlossy | kBsdfReflection;
-    } else {
-      wi = sample_cosine_hemisphere(u);
-      s.lobe = kBsdfDiffuse | kBsdfReflection;
-    }
-    if (!complete_sample(*this, wo, wi, sp, s)) return false;
+    if (below) s.wi = flip_z(s.wi);
+    return true;
   }
-  if (below) s.wi = flip_z(s.wi);
-  return true;
+  const bool glossy = u_lobe < p;
+  const Vec3 wi = glossy ? reflect(wo, dist_->sample_visible(wo, u)) : sample_cosine_hemisphere(u);
+  return complete_sample(*this, wo, wi, kBsdfReflection | (glossy ? kBsdfGlossy : kBsdfDiffuse), below, sp, s);
 }
 
 int Plastic::specular_lobes(const Vec3& wo, BsdfSample* out, const ShadingPoint& sp) const {
