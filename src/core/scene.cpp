@@ -125,12 +125,6 @@ Color Scene::escaped(const Vec3& dir) const {
   return L;
 }
 
-float Scene::pdf_escaped(const Vec3& dir) const {
-  float pdf = 0.0f;
-  for (size_t i : environment_) pdf += light_pmf(i) * lights[i]->pdf_escaped(dir);
-  return pdf;
-}
-
 float Scene::surface_area() const {
   float a = 0;
   for (const ObjectInfo& o : objects) a += o.area;

@@ -74,11 +74,11 @@ class Scene {
   // Chooses a light in proportion to its power.
   const Light* sample_light(float u, float& pmf) const;
   float light_pmf(size_t i) const { return light_distribution_.pmf(i); }
-  // Radiance arriving along a ray that leaves the scene in direction dir (environment lights),
-  // and the density with which next-event estimation picks dir (light pmf included).
+  // Radiance arriving along a ray that leaves the scene in direction dir (environment lights).
   Color escaped(const Vec3& dir) const;
-  float pdf_escaped(const Vec3& dir) const;
   bool has_environment() const { return !environment_.empty(); }
+  // The indices of those lights in `lights`.
+  const std::vector<size_t>& environment() const { return environment_; }
   const Bvh& bvh() const { return bvh_; }
   Bounds bounds() const { return bounds_; }
   float surface_area() const;  // of all geometry

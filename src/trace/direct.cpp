@@ -29,9 +29,14 @@ Color emission_mis(const Scene& scene, const SurfaceHit& hit, const Color& Le, c
 }
 
 Color escaped_mis(const Scene& scene, const Vec3& dir, const BsdfVertex& from) {
-  if (!scene.has_environment()) return Color(0.0f);
-  const Color Le = scene.escaped(dir);
-  return from.specular ? Le : Le * mis_weight(from.pdf, scene.pdf_escaped(dir));
+  // Each environment light is weighted against its own light-sampling density, as
+  // estimate_direct weighted it, so the weights add to 1 with several of them.
+  Color L(0.0f);
+  for (size_t i : scene.environment()) {
+    const Color Le = scene.lights[i]->escaped(dir);
+    L += from.specular ? Le : Le * mis_weight(from.pdf, scene.light_pmf(i) * scene.lights[i]->pdf_escaped(dir));
+  }
+  return L;
 }
 
 }  // namespace caustica

@@ -52,6 +52,8 @@ TEST_CASE("materials: photon mapping's gather rule follows the glossy threshold"
   CHECK_FALSE(is_gather_surface(*rough, 0.3f));
   CHECK(is_gather_surface(*rough, 0.2f));
   CHECK(is_gather_surface(*read(R"({"type": "phong", "exponent": 10000})"), 0.3f));  // has a diffuse lobe
+  // Rough glass is traced through at any roughness: its transmitted light comes from behind.
+  CHECK_FALSE(is_gather_surface(*read(R"({"type": "roughdielectric", "alpha": 0.8})"), 0.3f));
 }
 
 TEST_CASE("materials: named indices of refraction", "[core][bsdf_reader]") {
@@ -100,6 +102,10 @@ TEST_CASE("materials: bad values are errors naming the file and the key", "[core
                     Contains("unknown material type \"plasticc\"") && Contains("roughconductor"));
   CHECK_THROWS_WITH(read(R"({"type": "twosided", "bsdf": [{"type": "diffuse", "emission": 1}]})"),
                     Contains("emission belongs on the twosided material"));
+  CHECK_THROWS_WITH(read(R"({"type": "mask", "emission": 1, "bsdf": {"type": "diffuse"}})"),
+                    Contains("/materials/x/emission") && Contains("unknown key"));
+  CHECK_THROWS_WITH(read(R"({"type": "mask", "bsdf": {"type": "diffuse", "emission": 1}})"),
+                    Contains("/materials/x/bsdf") && Contains("cannot emit"));
   std::vector<std::string> warnings;
   read(R"({"type": "phong", "diffuse_reflectance": 0.6, "specular_reflectance": 0.6})", &warnings);
   REQUIRE(warnings.size() == 1);

@@ -65,6 +65,16 @@ TEST_CASE("constant environment: a diffuse sphere reads rho L, the background L,
     CHECK(mean.x == Approx(1.2).epsilon(0.02));
     CHECK(mean.z == Approx(0.3).epsilon(0.02));
   }
+  // Two environments at once: multiple importance sampling weighs each against its own
+  // light-sampling density, so the sphere still reads rho (L1 + L2).
+  std::string two = scene;
+  two.replace(two.find(R"({"type": "constant", "radiance": [2, 1, 0.5]})"), 45,
+              R"({"type": "constant", "radiance": [1, 0.5, 0.25]}, {"type": "constant", "radiance": [1, 0.5, 0.25]})");
+  for (const char* integrator : {"path", "photon"}) {
+    INFO(integrator << ", two environments");
+    const Color mean = render_text(two, integrator, "{}", 16, 8, 8).image.mean();
+    CHECK(mean.x == Approx(1.2).epsilon(0.02));
+  }
   const std::string sky = R"({
     "camera": {"position": [0, 0, -4], "look_at": [0, 0, -10], "fov": 10},
     "materials": {"ball": {"type": "diffuse", "reflectance": 0.6}},

@@ -162,8 +162,10 @@ std::unique_ptr<Material> read_material(const MaterialContext& ctx, const json& 
     }
     mat = std::make_unique<Phong>(kd, ks, b.number("exponent", 30.0f, 0.0, 1e6));
   } else if (type == "mask") {
-    r.check_object(m, p, {"type", "bsdf", "opacity", "emission"});
+    // No emission on a mask: light sampling would see an opaque light that rays pass through.
+    r.check_object(m, p, {"type", "bsdf", "opacity"});
     ctx.nested.push_back(read_material(ctx, r.require(m, p, "bsdf"), b.at("bsdf")));
+    if (ctx.nested.back()->is_emissive()) r.fail(b.at("bsdf"), "a masked material cannot emit light");
     const ColorParam opacity = b.param("opacity", Color(0.5f));
     if (!opacity.texture && max_component(opacity.value) > 1.0f) r.fail(b.at("opacity"), "opacity must lie in [0, 1]");
     mat = std::make_unique<Mask>(ctx.nested.back().get(), opacity);
