@@ -31,7 +31,8 @@ class Emitter {
   Emitter(const Scene& scene, bool caustic, float glossy_threshold)
       : scene_(scene), caustic_(caustic), scene_radius_(0.5f * glm::length(scene.bounds().extent())) {
     for (const ObjectInfo& o : scene.objects) {
-      if (!is_gather_surface(*scene.materials[o.material], glossy_threshold)) targets_.push_back({o.centre, o.radius});
+      const Material& m = *scene.materials[o.material];
+      if (!is_gather_surface(m, glossy_threshold) || m.has(kBsdfSpecular)) targets_.push_back({o.centre, o.radius});
     }
   }
   bool has_targets() const { return !targets_.empty(); }
@@ -126,7 +127,16 @@ void trace_photon(const Scene& scene, Ray ray, Color flux, bool caustic, const P
       const Vec3 n_side = wo_l.z >= 0 ? hit.n : -hit.n;
       if (caustic) {
         if (specular_bounces > 0) out.push_back({hit.p, flux, wo, n_side, depth});
-        return;  // the caustic map keeps only L S+ D
+        // The caustic map keeps only L S+ D: the photon goes on only along a delta lobe of this
+        // surface (plastic's coat), which is not part of the estimate stored here.
+        BsdfSample coat[2];
+        if (!m.has(kBsdfSpecular) || m.specular_lobes(wo_l, coat, hit.sp) != 1) return;
+        const Vec3 wi = hit.frame.to_world(coat[0].wi);
+        flux *= coat[0].weight;
+        ++specular_bounces;
+        if (hit.leaks(wi) || is_black(flux)) return;
+        ray = spawn_ray(hit.p, hit.n, wi);
+        continue;
       }
       out.push_back({hit.p, flux, wo, n_side, depth});
     }

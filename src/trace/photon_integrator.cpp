@@ -155,7 +155,15 @@ Color PhotonIntegrator::final_gather(const Scene& scene, const SurfaceHit& hit, 
       if (depth == 0) sum += throughput * emission_mis(scene, g, m.emitted(g.frame.to_local(-ray.dir)), from);
       if (is_gather_surface(m, settings_.glossy_threshold)) {
         sum += throughput * indirect_at(g, -ray.dir, scratch);
-        break;
+        // The photon estimate has no delta part: a coat (plastic) passes the gather ray on, as
+        // the caustic map's photons pass through it; the emission it reaches is the caustic map's.
+        BsdfSample coat[2];
+        if (!m.has(kBsdfSpecular) || m.specular_lobes(g.frame.to_local(-ray.dir), coat, g.sp) != 1) break;
+        const Vec3 cwi = g.frame.to_world(coat[0].wi);
+        if (g.leaks(cwi)) break;
+        throughput *= coat[0].weight;
+        ray = spawn_ray(g.p, g.n, cwi);
+        continue;
       }
       BsdfSample ss;
       const Vec3 gwo = g.frame.to_local(-ray.dir);

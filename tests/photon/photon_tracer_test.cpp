@@ -149,3 +149,35 @@ TEST_CASE("photon pass: the same maps for 1 and 2 threads", "[photon][determinis
   CHECK(one.global_emitted == two.global_emitted);
   CHECK(std::memcmp(one.global.data(), two.global.data(), one.global.size() * sizeof(Photon)) == 0);
 }
+
+TEST_CASE("photon pass: caustic photons pass through plastic's coat and land on the floor", "[photon][caustic]") {
+  // A smooth plastic ball (a diffuse base under a clear coat) over a floor, a point light above.
+  // Light -> coat -> floor is L S D: those photons belong in the caustic map, carrying the
+  // coat's Fresnel reflectance; the photons' first hits on the ball itself are not caustics.
+  const char* text = R"({
+    "camera": {"position": [0, 5, 5], "look_at": [0, 0, 0]},
+    "materials": {"white": {"type": "diffuse", "reflectance": 0.8},
+                  "plastic": {"type": "plastic", "diffuse_reflectance": 0.3, "int_ior": 1.5}},
+    "objects": [{"type": "quad", "origin": [-20, 0, -20], "edge1": [0, 0, 40], "edge2": [40, 0, 0], "material": "white"},
+                {"type": "sphere", "center": [0, 1, 0], "radius": 0.5, "material": "plastic"}],
+    "lights": [{"type": "point", "position": [0, 3, 0], "intensity": [10, 10, 10]}]
+  })";
+  LoadedScene s = parse_scene(text, "plastic.json", ".");
+  PhotonPassSettings settings;
+  settings.global_photons = 1000;
+  settings.caustic_photons = 20000;
+  const PhotonPassResult r = trace_photons(*s.scene, settings);
+  REQUIRE(r.caustic.size() >= 20000);
+  size_t on_floor = 0;
+  double total = 0;
+  for (const Photon& p : r.caustic) {
+    on_floor += std::abs(p.position.y) < 1e-3f;
+    total += (p.power() * r.caustic_scale).x;
+  }
+  CHECK(on_floor == r.caustic.size());
+  // The coat reflects F (4 % at normal incidence, more at grazing) of the power in the ball's
+  // cone: between 4 % and 30 % of I * solid angle reaches the floor.
+  const double cone = 2 * kPi * (1 - std::sqrt(1 - 0.25 / (2.0 * 2.0)));
+  CHECK(total > 0.04 * 10 * cone * 0.5);
+  CHECK(total < 0.3 * 10 * cone);
+}
