@@ -199,6 +199,11 @@ Vec3 JsonReader::vec3(const nlohmann::json& v, const std::string& pointer) const
               static_cast<float>(number(v[2], child(pointer, 2))));
 }
 
+Vec2 JsonReader::vec2(const nlohmann::json& v, const std::string& pointer, const std::string& expected) const {
+  if (!v.is_array() || v.size() != 2) fail(pointer, "expected " + expected);
+  return Vec2(static_cast<float>(number(v[0], child(pointer, 0))), static_cast<float>(number(v[1], child(pointer, 1))));
+}
+
 Color JsonReader::color(const nlohmann::json& v, const std::string& pointer) const {
   if (v.is_number()) {
     const float c = static_cast<float>(number_in(v, pointer, 0.0, 1e9));

@@ -37,6 +37,8 @@ class JsonReader {
   bool boolean(const nlohmann::json& v, const std::string& pointer) const;
   std::string string(const nlohmann::json& v, const std::string& pointer) const;
   Vec3 vec3(const nlohmann::json& v, const std::string& pointer) const;
+  // Two numbers; `expected` names them in the message, e.g. "[u, v]".
+  Vec2 vec2(const nlohmann::json& v, const std::string& pointer, const std::string& expected) const;
   Color color(const nlohmann::json& v, const std::string& pointer) const;  // non-negative
 
  private:

@@ -76,7 +76,6 @@ class Scene {
   float light_pmf(size_t i) const { return light_distribution_.pmf(i); }
   // Radiance arriving along a ray that leaves the scene in direction dir (environment lights).
   Color escaped(const Vec3& dir) const;
-  bool has_environment() const { return !environment_.empty(); }
   // The indices of those lights in `lights`.
   const std::vector<size_t>& environment() const { return environment_; }
   const Bvh& bvh() const { return bvh_; }

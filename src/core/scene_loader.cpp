@@ -249,10 +249,8 @@ struct Loader {
       }
       const auto normals = per_vertex<Vec3>(j, p, "normals", verts.size(),
                                             [&](const json& x, const std::string& xp) { return r.vec3(x, xp); });
-      const auto uvs = per_vertex<Vec2>(j, p, "uvs", verts.size(), [&](const json& x, const std::string& xp) {
-        if (!x.is_array() || x.size() != 2) r.fail(xp, "expected [u, v]");
-        return Vec2(float(r.number(x[0], child(xp, size_t(0)))), float(r.number(x[1], child(xp, size_t(1)))));
-      });
+      const auto uvs = per_vertex<Vec2>(j, p, "uvs", verts.size(),
+                                        [&](const json& x, const std::string& xp) { return r.vec2(x, xp, "[u, v]"); });
       if (!normals.empty() || !uvs.empty()) {
         for (const glm::ivec3& t : mesh.tris) {
           TriangleAttributes a;

@@ -18,15 +18,10 @@ UvTransform read_to_uv(const JsonReader& r, const json& j, const std::string& p)
     if (j["scale"].is_number()) {
       scale = Vec2(float(r.number(j["scale"], sp)));
     } else {
-      if (!j["scale"].is_array() || j["scale"].size() != 2) r.fail(sp, "expected a number or [su, sv]");
-      scale = Vec2(float(r.number(j["scale"][0], child(sp, size_t(0)))), float(r.number(j["scale"][1], child(sp, size_t(1)))));
+      scale = r.vec2(j["scale"], sp, "a number or [su, sv]");
     }
   }
-  if (j.contains("translate")) {
-    const std::string tp = child(p, "translate");
-    if (!j["translate"].is_array() || j["translate"].size() != 2) r.fail(tp, "expected [tu, tv]");
-    translate = Vec2(float(r.number(j["translate"][0], child(tp, size_t(0)))), float(r.number(j["translate"][1], child(tp, size_t(1)))));
-  }
+  if (j.contains("translate")) translate = r.vec2(j["translate"], child(p, "translate"), "[tu, tv]");
   const float a = j.contains("rotate") ? float(r.number(j["rotate"], child(p, "rotate"))) * kPi / 180.0f : 0.0f;
   const float c = std::cos(a), s = std::sin(a);
   UvTransform t;
