@@ -39,10 +39,17 @@ struct SceneFlags {
   SceneOptions* options = nullptr;
   double photon_values[kPhotonFlagCount] = {};
   CLI::Option* photon_options[kPhotonFlagCount] = {};
+  std::vector<std::string> defines;
 
   void add(CLI::App* cmd, SceneOptions& o, bool with_spp) {
     options = &o;
-    cmd->add_option("scene", o.scene, "Scene file (JSON, see docs/scene-format.md)")->required();
+    cmd->add_option("scene", o.scene, "Scene file: JSON (docs/scene-format.md) or Mitsuba XML (docs/mitsuba.md)")->required();
+    cmd->add_option("-D", defines, "Mitsuba scenes: set a parameter, -D name=value (wins over <default>)")
+        ->group("Mitsuba scenes")
+        ->allow_extra_args(false);
+    cmd->add_flag("--ignore-unsupported", o.mitsuba.ignore_unsupported,
+                  "Mitsuba scenes: skip or replace unsupported plugins with a warning instead of failing")
+        ->group("Mitsuba scenes");
     if (with_spp) cmd->add_option("--spp", o.spp, "Samples per pixel")->check(CLI::Range(1, 1 << 24));
     cmd->add_option("--threads", o.threads, "Worker threads (default: all cores)")->check(CLI::Range(1, 1024));
     cmd->add_option("--seed", o.seed, "Random seed");
@@ -56,8 +63,13 @@ struct SceneFlags {
                               ->check(CLI::NonNegativeNumber);
     }
   }
-  // Moves the photon flags given into options->integrator_overrides.
+  // Moves the photon flags given into options->integrator_overrides, and -D into the Mitsuba options.
   void collect() const {
+    for (const std::string& d : defines) {
+      const size_t eq = d.find('=');
+      if (eq == std::string::npos || eq == 0) throw InputError("-D " + d + ": expected name=value");
+      options->mitsuba.xml.defines.emplace_back(d.substr(0, eq), d.substr(eq + 1));
+    }
     for (size_t i = 0; i < kPhotonFlagCount; ++i) {
       if (photon_options[i]->count() == 0) continue;
       const double v = photon_values[i];

@@ -7,7 +7,7 @@
 namespace caustica {
 
 LoadedScene load_scene_with(const SceneOptions& options) {
-  LoadedScene loaded = load_scene(options.scene);
+  LoadedScene loaded = load_scene(options.scene, options.mitsuba);
   for (const std::string& w : loaded.warnings) std::cerr << "warning: " << w << "\n";
   RenderSettings& rs = loaded.scene->render;
   if (options.width) rs.width = *options.width;
@@ -15,7 +15,8 @@ LoadedScene load_scene_with(const SceneOptions& options) {
   if (options.spp) rs.spp = *options.spp;
   if (options.seed) rs.seed = *options.seed;
   if (options.max_depth) rs.max_depth = *options.max_depth;
-  loaded.scene->camera.set_resolution(rs.width, rs.height);
+  // A new size is a new film: any crop window of the scene is dropped.
+  if (options.width || options.height) loaded.scene->camera.set_resolution(rs.width, rs.height);
   return loaded;
 }
 

@@ -19,6 +19,7 @@ struct SceneOptions {
   // Integrator settings from flags such as --photons, by settings key (applied over the scene's).
   std::vector<std::pair<std::string, nlohmann::json>> integrator_overrides;
   bool quiet = false;
+  MitsubaOptions mitsuba;  // -D and --ignore-unsupported
 };
 
 // Loads the scene (warnings to stderr) and applies the command line's render settings.

@@ -4,23 +4,57 @@
 namespace caustica {
 
 Camera::Camera(const Vec3& position, const Vec3& look_at, const Vec3& up, float vfov_degrees, int width, int height)
-    : position_(position), vfov_(vfov_degrees) {
+    : position_(position), fov_(vfov_degrees) {
   forward_ = glm::normalize(look_at - position);
   right_ = glm::normalize(glm::cross(forward_, up));
   up_ = glm::cross(right_, forward_);
-  tan_half_ = std::tan(0.5f * vfov_degrees * kPi / 180.0f);
   set_resolution(width, height);
 }
 
 void Camera::set_resolution(int width, int height) {
-  width_ = width;
-  height_ = height;
+  film_width_ = width_ = width;
+  film_height_ = height_ = height;
+  crop_x_ = crop_y_ = 0;
   aspect_ = static_cast<float>(width) / static_cast<float>(height);
+  update_tan();
 }
 
+void Camera::set_crop(int x, int y, int width, int height) {
+  crop_x_ = x;
+  crop_y_ = y;
+  width_ = width;
+  height_ = height;
+}
+
+void Camera::set_fov(float degrees, FovAxis axis) {
+  fov_ = degrees;
+  axis_ = axis;
+  update_tan();
+}
+
+void Camera::set_mirror(bool mirror) {
+  if (mirror != mirror_) right_ = -right_;
+  mirror_ = mirror;
+}
+
+// tan_half_ is the tangent of half the vertical angle.
+void Camera::update_tan() {
+  const float t = std::tan(0.5f * fov_ * kPi / 180.0f);
+  const float w = float(film_width_), h = float(film_height_);
+  switch (axis_) {
+    case FovAxis::Y: tan_half_ = t; break;
+    case FovAxis::X: tan_half_ = t * h / w; break;
+    case FovAxis::Smaller: tan_half_ = w < h ? t * h / w : t; break;
+    case FovAxis::Larger: tan_half_ = w > h ? t * h / w : t; break;
+    case FovAxis::Diagonal: tan_half_ = t * h / std::sqrt(w * w + h * h); break;
+  }
+}
+
+float Camera::vfov_degrees() const { return 2.0f * std::atan(tan_half_) * 180.0f / kPi; }
+
 Ray Camera::generate_ray(float x, float y) const {
-  const float sx = (2.0f * x / width_ - 1.0f) * tan_half_ * aspect_;
-  const float sy = (1.0f - 2.0f * y / height_) * tan_half_;
+  const float sx = (2.0f * (x + float(crop_x_)) / float(film_width_) - 1.0f) * tan_half_ * aspect_;
+  const float sy = (1.0f - 2.0f * (y + float(crop_y_)) / float(film_height_)) * tan_half_;
   return Ray{position_, glm::normalize(forward_ + sx * right_ + sy * up_), kInfinity};
 }
 
@@ -30,9 +64,9 @@ bool Camera::project(const Vec3& p, float& x, float& y) const {
   if (z <= 0.0f) return false;
   const float sx = glm::dot(d, right_) / (z * tan_half_ * aspect_);
   const float sy = glm::dot(d, up_) / (z * tan_half_);
-  x = 0.5f * (sx + 1.0f) * width_;
-  y = 0.5f * (1.0f - sy) * height_;
-  return x >= 0 && y >= 0 && x < width_ && y < height_;
+  x = 0.5f * (sx + 1.0f) * float(film_width_) - float(crop_x_);
+  y = 0.5f * (1.0f - sy) * float(film_height_) - float(crop_y_);
+  return x >= 0 && y >= 0 && x < float(width_) && y < float(height_);
 }
 
 }  // namespace caustica

@@ -1,26 +1,41 @@
-// Pinhole camera: position, look-at, up, vertical field of view, resolution.
+// Pinhole camera: position, look-at, up, field of view along a chosen axis, film and crop window.
 #pragma once
 #include "core/math.h"
 
 namespace caustica {
 
+// Which extent of the film the field of view spans (Mitsuba's fov_axis).
+enum class FovAxis { X, Y, Smaller, Larger, Diagonal };
+
 class Camera {
  public:
   Camera() = default;
   Camera(const Vec3& position, const Vec3& look_at, const Vec3& up, float vfov_degrees, int width, int height);
-  // Ray through film position (x, y) in pixels, y down from the top.
+  // Ray through image position (x, y) in pixels, y down from the top (crop window applied).
   Ray generate_ray(float x, float y) const;
-  // Projects a world point to film coordinates; false when behind the camera or off the film.
+  // Projects a world point to image coordinates; false when behind the camera or off the image.
   bool project(const Vec3& p, float& x, float& y) const;
+  // Image (crop window) size in pixels.
   int width() const { return width_; }
   int height() const { return height_; }
   const Vec3& position() const { return position_; }
-  float vfov_degrees() const { return vfov_; }
+  float vfov_degrees() const;
+  // The whole film; clears a crop window.
   void set_resolution(int width, int height);
+  // Renders only the window [x, x + width) x [y, y + height) of the film.
+  void set_crop(int x, int y, int width, int height);
+  // `degrees` spans the film along `axis`; recomputed for the film's aspect on set_resolution.
+  void set_fov(float degrees, FovAxis axis);
+  // Mirrors the image left-right (a camera transform with a negative determinant).
+  void set_mirror(bool mirror);
 
  private:
+  void update_tan();
   Vec3 position_{0.0f}, forward_{0, 0, 1}, right_{1, 0, 0}, up_{0, 1, 0};
-  float vfov_ = 45.0f, tan_half_ = 0.414f, aspect_ = 1.0f;
+  float fov_ = 45.0f, tan_half_ = 0.414f, aspect_ = 1.0f;
+  FovAxis axis_ = FovAxis::Y;
+  bool mirror_ = false;
+  int film_width_ = 1, film_height_ = 1, crop_x_ = 0, crop_y_ = 0;
   int width_ = 1, height_ = 1;
 };
 

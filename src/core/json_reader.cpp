@@ -122,12 +122,28 @@ nlohmann::json parse_json_text(const std::string& text, const std::string& file)
   }
 }
 
+std::string JsonReader::where(const std::string& pointer) const {
+  if (sources_) {
+    // The longest recorded prefix of the pointer, and the keys below it.
+    for (std::string p = pointer;; p = p.substr(0, p.rfind('/'))) {
+      const auto it = sources_->find(p);
+      if (it != sources_->end()) {
+        std::string rest = pointer.substr(p.size());
+        if (!rest.empty() && rest[0] == '/') rest = rest.substr(1);
+        return it->second + (rest.empty() ? "" : ": " + rest);
+      }
+      if (p.empty()) break;
+    }
+  }
+  return file_ + ": " + (pointer.empty() ? "/" : pointer);
+}
+
 void JsonReader::fail(const std::string& pointer, const std::string& message) const {
-  throw InputError(file_ + ": " + (pointer.empty() ? "/" : pointer) + ": " + message);
+  throw InputError(where(pointer) + ": " + message);
 }
 
 void JsonReader::warn(const std::string& pointer, const std::string& message, std::vector<std::string>& out) const {
-  out.push_back(file_ + ": " + (pointer.empty() ? "/" : pointer) + ": " + message);
+  out.push_back(where(pointer) + ": " + message);
 }
 
 static std::string type_name(const nlohmann::json& v) { return v.type_name(); }

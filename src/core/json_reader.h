@@ -1,6 +1,8 @@
 // Typed, validated reads from a JSON document that name the file and JSON pointer on error.
 #pragma once
 #include <initializer_list>
+#include <map>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -18,10 +20,16 @@ class InputError : public std::runtime_error {
 // Parses JSON text; a syntax error becomes "file:line:column: message" with the line and a caret.
 nlohmann::json parse_json_text(const std::string& text, const std::string& file);
 
+// For a document translated from another format (a Mitsuba XML scene): where each JSON pointer
+// came from, e.g. "/materials/wood/alpha" -> "scene.xml:14:7: <float name=\"alpha\">".
+using SourceMap = std::map<std::string, std::string>;
+
 class JsonReader {
  public:
-  explicit JsonReader(std::string file) : file_(std::move(file)) {}
+  explicit JsonReader(std::string file, std::shared_ptr<const SourceMap> sources = nullptr)
+      : file_(std::move(file)), sources_(std::move(sources)) {}
   const std::string& file() const { return file_; }
+  const std::shared_ptr<const SourceMap>& sources() const { return sources_; }
 
   [[noreturn]] void fail(const std::string& pointer, const std::string& message) const;
   void warn(const std::string& pointer, const std::string& message, std::vector<std::string>& out) const;
@@ -42,7 +50,10 @@ class JsonReader {
   Color color(const nlohmann::json& v, const std::string& pointer) const;  // non-negative
 
  private:
+  // "file: pointer" or, for a translated document, the place in the source it came from.
+  std::string where(const std::string& pointer) const;
   std::string file_;
+  std::shared_ptr<const SourceMap> sources_;
 };
 
 inline std::string child(const std::string& pointer, const std::string& key) { return pointer + "/" + key; }

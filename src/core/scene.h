@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 #include "core/bvh.h"
 #include "core/camera.h"
+#include "core/json_reader.h"
 #include "core/light.h"
 #include "core/material.h"
 #include "core/textures/texture.h"
@@ -26,6 +27,7 @@ struct JsonSource {
   nlohmann::json value = nlohmann::json::object();
   std::string file;     // scene file name, for messages
   std::string pointer;  // JSON pointer of `value` inside the file
+  std::shared_ptr<const SourceMap> sources;  // set when the scene was translated (Mitsuba XML)
 };
 
 struct SurfaceHit {

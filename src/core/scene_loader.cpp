@@ -4,13 +4,13 @@
 #include <fstream>
 #include <map>
 #include <sstream>
-#include <tiny_obj_loader.h>
 #include "core/bsdf/bsdf_reader.h"
 #include "core/image.h"
 #include "core/json_reader.h"
 #include "core/lights/directional.h"
 #include "core/lights/environment.h"
 #include "core/lights/spot.h"
+#include "core/meshes/mesh_file.h"
 
 namespace caustica {
 namespace fs = std::filesystem;
@@ -50,17 +50,26 @@ struct Loader {
   }
 
   void read_render(const json& j, const std::string& p) {
-    r.check_object(j, p, {"width", "height", "spp", "seed", "max_depth"});
+    r.check_object(j, p, {"width", "height", "spp", "seed", "max_depth", "crop"});
     RenderSettings& rs = scene().render;
     if (j.contains("width")) rs.width = int(r.integer(j["width"], child(p, "width"), 1, 16384));
     if (j.contains("height")) rs.height = int(r.integer(j["height"], child(p, "height"), 1, 16384));
     if (j.contains("spp")) rs.spp = int(r.integer(j["spp"], child(p, "spp"), 1, 1 << 24));
     if (j.contains("seed")) rs.seed = uint64_t(r.integer(j["seed"], child(p, "seed"), 0, INT64_MAX));
     if (j.contains("max_depth")) rs.max_depth = int(r.integer(j["max_depth"], child(p, "max_depth"), 1, 1024));
+    if (j.contains("crop")) {
+      const json& c = j["crop"];
+      const std::string cp = child(p, "crop");
+      if (!c.is_array() || c.size() != 4) r.fail(cp, "expected [x, y, width, height] in pixels of the film");
+      for (size_t i = 0; i < 4; ++i) crop_[i] = int(r.integer(c[i], child(cp, i), i < 2 ? 0 : 1, 16384));
+      if (crop_[0] + crop_[2] > rs.width || crop_[1] + crop_[3] > rs.height) {
+        r.fail(cp, "the crop window reaches outside the " + std::to_string(rs.width) + "x" + std::to_string(rs.height) + " film");
+      }
+    }
   }
 
   void read_camera(const json& j, const std::string& p) {
-    r.check_object(j, p, {"position", "look_at", "up", "fov"});
+    r.check_object(j, p, {"position", "look_at", "up", "fov", "fov_axis", "mirror"});
     const Vec3 pos = r.vec3(r.require(j, p, "position"), child(p, "position"));
     const Vec3 at = r.vec3(r.require(j, p, "look_at"), child(p, "look_at"));
     const Vec3 up = j.contains("up") ? r.vec3(j["up"], child(p, "up")) : Vec3(0, 1, 0);
@@ -69,14 +78,33 @@ struct Loader {
     if (glm::length(glm::cross(glm::normalize(at - pos), up)) < 1e-6f) {
       r.fail(child(p, "up"), "up is parallel to the viewing direction (or zero)");
     }
-    scene().camera = Camera(pos, at, up, fov, scene().render.width, scene().render.height);
+    RenderSettings& rs = scene().render;
+    Camera& camera = scene().camera;
+    camera = Camera(pos, at, up, fov, rs.width, rs.height);
+    if (j.contains("fov_axis")) {
+      static const std::map<std::string, FovAxis> axes = {{"x", FovAxis::X}, {"y", FovAxis::Y}, {"smaller", FovAxis::Smaller},
+                                                          {"larger", FovAxis::Larger}, {"diagonal", FovAxis::Diagonal}};
+      const std::string a = r.string(j["fov_axis"], child(p, "fov_axis"));
+      const auto it = axes.find(a);
+      if (it == axes.end()) r.fail(child(p, "fov_axis"), "unknown fov_axis \"" + a + "\" (known: x, y, smaller, larger, diagonal)");
+      camera.set_fov(fov, it->second);
+    }
+    if (j.contains("mirror")) camera.set_mirror(r.boolean(j["mirror"], child(p, "mirror")));
+    if (crop_[2] > 0) {
+      camera.set_crop(crop_[0], crop_[1], crop_[2], crop_[3]);
+      rs.width = crop_[2];
+      rs.height = crop_[3];
+    }
   }
+
+  int crop_[4] = {0, 0, 0, 0};
 
   void read_integrator(const json& j, const std::string& p) {
     if (!j.is_object()) r.fail(p, "expected an object");
     JsonSource& src = scene().integrator_settings;
     src.file = r.file();
     src.pointer = p;
+    src.sources = r.sources();
     src.value = json::object();
     for (auto it = j.begin(); it != j.end(); ++it) {
       if (it.key() == "type") {
@@ -149,13 +177,25 @@ struct Loader {
       add_triangle(shapes, o, o + e1 + e2, o + e2, p, &a);
     } else if (type == "mesh") {
       r.check_object(j, p, {"type", "name", "material", "flip_normal", "vertices", "indices", "normals", "uvs", "file",
-                            "scale", "translate", "face_normals"});
-      read_mesh(j, p, shapes);
+                            "shape_index", "scale", "translate", "to_world", "face_normals"});
+      MeshData mesh = read_mesh(j, p);
+      if (!j.contains("material") && !mesh.material_ids.empty()) {
+        add_mesh_with_its_materials(j, p, mesh);
+        return;
+      }
+      for (size_t i = 0; i < mesh.tris.size(); ++i) add_mesh_triangle(mesh, i, shapes, p);
     } else {
       r.fail(child(p, "type"), "unknown object type \"" + type + "\" (known: sphere, triangle, quad, mesh)");
     }
     if (j.contains("name")) r.string(j["name"], child(p, "name"));
-    const uint32_t mat = material_ref(j, p);
+    if (type == "mesh" && !j.contains("material") && j.contains("file")) {
+      r.fail(p, "missing key \"material\" (the mesh file names no materials of its own)");
+    }
+    add_object(std::move(shapes), material_ref(j, p), j, p);
+  }
+
+  // Shapes of one material become one object (and one area light when the material emits).
+  void add_object(std::vector<Primitive> shapes, uint32_t mat, const json& j, const std::string& p) {
     const bool flip = j.contains("flip_normal") && r.boolean(j["flip_normal"], child(p, "flip_normal"));
     if (shapes.empty()) {
       if (scene().materials[mat]->is_emissive()) r.fail(p, "emissive object has zero area (all its triangles are degenerate)");
@@ -195,6 +235,60 @@ struct Loader {
     scene().objects.push_back(info);
   }
 
+  // An OBJ whose .mtl names materials, in a scene that gives the object none: one object per
+  // material, the materials translated (docs/scene-format.md, "Materials of mesh files").
+  void add_mesh_with_its_materials(const json& j, const std::string& p, const MeshData& mesh) {
+    const std::string file = r.string(j["file"], child(p, "file"));
+    std::map<int, std::vector<Primitive>> groups;
+    for (size_t i = 0; i < mesh.tris.size(); ++i) add_mesh_triangle(mesh, i, groups[mesh.material_ids[i]], p);
+    for (auto& [id, shapes] : groups) {
+      const std::string key = file + (id >= 0 ? "#" + mesh.materials[size_t(id)].name : "#(none)");
+      auto it = material_ids.find(key);
+      if (it == material_ids.end()) {
+        json m = id >= 0 ? mesh_material_json(mesh.materials[size_t(id)], mesh.material_dir, p) : json{{"type", "diffuse"}, {"reflectance", 0.5}};
+        if (id < 0) r.warn(p, "faces without a material in " + file + " get a grey diffuse one", out.warnings);
+        std::vector<std::unique_ptr<Material>> nested;
+        const MaterialContext ctx{r, base_dir, nested, scene().textures, out.warnings};
+        std::unique_ptr<Material> mat = read_material(ctx, m, p + " (material \"" + key + "\" of the mesh file)");
+        for (auto& n : nested) {
+          scene().materials.push_back(std::move(n));
+          scene().material_names.push_back(key + " (nested)");
+        }
+        it = material_ids.emplace(key, static_cast<uint32_t>(scene().materials.size())).first;
+        scene().materials.push_back(std::move(mat));
+        scene().material_names.push_back(key);
+      }
+      add_object(std::move(shapes), it->second, j, p);
+    }
+  }
+
+  // OBJ/MTL terms in ours: Ke emits; illum 4, 6, 7 or d < 1 is glass of index Ni; a Ks with an
+  // Ns is Phong (scaled so that Kd + Ks stays at most 1); else Lambertian Kd (or map_Kd).
+  json mesh_material_json(const MeshMaterial& mm, const std::string& dir, const std::string& p) {
+    auto rgb = [](const Color& c) { return json::array({c.x, c.y, c.z}); };
+    json m;
+    if (mm.illum == 4 || mm.illum == 6 || mm.illum == 7 || mm.d < 1.0f) {
+      m = {{"type", "dielectric"}, {"int_ior", mm.ni > 1.0f ? mm.ni : 1.5f}};
+    } else {
+      json kd = rgb(mm.kd);
+      if (!mm.map_kd.empty()) {
+        const fs::path tex = fs::path(mm.map_kd).is_absolute() ? fs::path(mm.map_kd) : fs::path(dir) / mm.map_kd;
+        kd = {{"type", "bitmap"}, {"filename", fs::absolute(tex).string()}};
+      }
+      const float sum = max_component(mm.kd + mm.ks);
+      if (!is_black(mm.ks) && mm.ns > 0.0f) {
+        const float s = sum > 1.0f ? 1.0f / sum : 1.0f;
+        if (sum > 1.0f) r.warn(p, "material \"" + mm.name + "\": Kd + Ks exceeds 1 and is scaled down", out.warnings);
+        if (kd.is_array()) kd = rgb(mm.kd * s);
+        m = {{"type", "phong"}, {"diffuse_reflectance", kd}, {"specular_reflectance", rgb(mm.ks * s)}, {"exponent", mm.ns}};
+      } else {
+        m = {{"type", "diffuse"}, {"reflectance", kd}};
+      }
+    }
+    if (!is_black(mm.ke)) m["emission"] = rgb(mm.ke);
+    return m;
+  }
+
   void add_triangle(std::vector<Primitive>& shapes, const Vec3& a, const Vec3& b, const Vec3& c, const std::string& p,
                     const TriangleAttributes* attributes = nullptr) {
     const float area2 = glm::length(glm::cross(b - a, c - a));
@@ -211,12 +305,11 @@ struct Loader {
     ++out.triangle_count;
   }
 
-  // A mesh as read: positions, triangles, and per-triangle shading data (or none).
-  struct MeshData {
-    std::vector<Vec3> verts;
-    std::vector<glm::ivec3> tris;
-    std::vector<TriangleAttributes> attributes;  // empty, or one per triangle
-  };
+  void add_mesh_triangle(const MeshData& mesh, size_t i, std::vector<Primitive>& shapes, const std::string& p) {
+    const glm::ivec3& t = mesh.tris[i];
+    add_triangle(shapes, mesh.verts[size_t(t.x)], mesh.verts[size_t(t.y)], mesh.verts[size_t(t.z)], p,
+                 mesh.attributes.empty() ? nullptr : &mesh.attributes[i]);
+  }
 
   // Per-vertex normals or UVs of an inline mesh: an array as long as "vertices".
   template <class T, class Read>
@@ -229,12 +322,29 @@ struct Loader {
     return out;
   }
 
-  void read_mesh(const json& j, const std::string& p, std::vector<Primitive>& shapes) {
+  // An affine transform as 3 or 4 rows of 4 numbers (the last row, if given, must be 0 0 0 1).
+  glm::mat4 read_affine(const json& m, const std::string& p) {
+    if (!m.is_array() || (m.size() != 3 && m.size() != 4)) r.fail(p, "expected a 4x4 matrix (an array of 4 rows of 4 numbers)");
+    glm::mat4 out(1.0f);
+    for (size_t row = 0; row < m.size(); ++row) {
+      const json& rw = m[row];
+      if (!rw.is_array() || rw.size() != 4) r.fail(child(p, row), "expected a row of 4 numbers");
+      for (size_t col = 0; col < 4; ++col) out[int(col)][int(row)] = float(r.number(rw[col], child(child(p, row), col)));
+    }
+    if (out[0][3] != 0.0f || out[1][3] != 0.0f || out[2][3] != 0.0f || out[3][3] != 1.0f) {
+      r.fail(p, "the last row must be [0, 0, 0, 1] (projective transforms are not supported)");
+    }
+    if (!(std::abs(glm::determinant(glm::mat3(out))) > 1e-12f)) r.fail(p, "the transform is singular (it flattens the shape)");
+    return out;
+  }
+
+  MeshData read_mesh(const json& j, const std::string& p) {
     MeshData mesh;
     std::vector<Vec3>& verts = mesh.verts;
     const bool inline_mesh = j.contains("vertices") || j.contains("indices");
     if (inline_mesh && j.contains("file")) r.fail(p, "give either \"file\" or \"vertices\" and \"indices\", not both");
     if (inline_mesh) {
+      if (j.contains("shape_index")) r.fail(child(p, "shape_index"), "shape_index applies to mesh files only");
       const json& v = r.require(j, p, "vertices");
       const json& ix = r.require(j, p, "indices");
       if (!v.is_array()) r.fail(child(p, "vertices"), "expected an array of [x, y, z]");
@@ -265,7 +375,13 @@ struct Loader {
       }
     } else {
       const std::string file = r.string(r.require(j, p, "file"), child(p, "file"));
-      load_obj(file, child(p, "file"), mesh);
+      const int shape_index = j.contains("shape_index") ? int(r.integer(j["shape_index"], child(p, "shape_index"), 0, INT32_MAX)) : 0;
+      const fs::path path = fs::path(file).is_absolute() ? fs::path(file) : fs::path(base_dir) / file;
+      try {
+        mesh = read_mesh_file(path.string(), shape_index);
+      } catch (const InputError& e) {
+        r.fail(child(p, "file"), e.what());
+      }
     }
     Vec3 scale(1.0f), translate(0.0f);
     if (j.contains("scale")) {
@@ -273,92 +389,23 @@ struct Loader {
                                      : r.vec3(j["scale"], child(p, "scale"));
     }
     if (j.contains("translate")) translate = r.vec3(j["translate"], child(p, "translate"));
+    const bool has_matrix = j.contains("to_world");
+    const glm::mat4 to_world = has_matrix ? read_affine(j["to_world"], child(p, "to_world")) : glm::mat4(1.0f);
+    const glm::mat3 normal_matrix = glm::transpose(glm::inverse(glm::mat3(to_world)));
     const bool face_normals = j.contains("face_normals") && r.boolean(j["face_normals"], child(p, "face_normals"));
-    for (Vec3& v : verts) v = v * scale + translate;
-    for (size_t i = 0; i < mesh.tris.size(); ++i) {
-      const glm::ivec3& t = mesh.tris[i];
-      TriangleAttributes* a = mesh.attributes.empty() ? nullptr : &mesh.attributes[i];
-      if (a) {
-        if (face_normals) a->has_normals = false;
-        // Normals transform by the inverse of the scale.
-        for (Vec3& n : a->n) n = n / scale;
-      }
-      add_triangle(shapes, verts[size_t(t.x)], verts[size_t(t.y)], verts[size_t(t.z)], p, a);
+    for (Vec3& v : verts) {
+      v = v * scale + translate;
+      if (has_matrix) v = Vec3(to_world * glm::vec4(v, 1.0f));
     }
-  }
-
-  // tinyobjloader reads "nan", "inf" and garbage in v/vn/vt lines as 0 without a word: every
-  // number there must be finite, else the error names the file and the line.
-  void check_obj_numbers(std::istream& in, const std::string& file, const std::string& p) {
-    std::string line;
-    for (size_t number = 1; std::getline(in, line); ++number) {
-      if (line.size() < 2 || line[0] != 'v' || !(line[1] == ' ' || line[1] == '\t' || line[1] == 'n' || line[1] == 't')) continue;
-      std::istringstream tokens(line.substr(line[1] == ' ' || line[1] == '\t' ? 1 : 2));
-      std::string tok;
-      while (tokens >> tok) {
-        char* end = nullptr;
-        const double v = std::strtod(tok.c_str(), &end);
-        if (end == tok.c_str() || *end != '\0' || !std::isfinite(v)) {
-          r.fail(p, "OBJ file " + file + ":" + std::to_string(number) + ": \"" + tok + "\" is not a finite number");
-        }
+    for (TriangleAttributes& a : mesh.attributes) {
+      if (face_normals) a.has_normals = false;
+      // Normals transform by the inverse transpose.
+      for (Vec3& n : a.n) {
+        n = n / scale;
+        if (has_matrix) n = normal_matrix * n;
       }
     }
-  }
-
-  void load_obj(const std::string& file, const std::string& p, MeshData& mesh) {
-    const fs::path path = fs::path(file).is_absolute() ? fs::path(file) : fs::path(base_dir) / file;
-    std::error_code ec;
-    if (!fs::exists(path, ec)) r.fail(p, "mesh file not found: tried " + path.string());
-    if (!fs::is_regular_file(path, ec)) r.fail(p, "mesh path is not a regular file: " + path.string());
-    std::ifstream probe(path);
-    if (!probe) r.fail(p, "mesh file cannot be read: " + path.string());
-    check_obj_numbers(probe, path.string(), p);
-    tinyobj::ObjReaderConfig config;
-    config.triangulate = true;
-    config.vertex_color = false;
-    config.mtl_search_path = path.parent_path().string();
-    tinyobj::ObjReader reader;
-    if (!reader.ParseFromFile(path.string(), config)) {
-      r.fail(p, "cannot parse OBJ file " + path.string() + ": " + reader.Error());
-    }
-    const auto& attrib = reader.GetAttrib();
-    for (size_t i = 0; i + 2 < attrib.vertices.size(); i += 3) {
-      mesh.verts.emplace_back(attrib.vertices[i], attrib.vertices[i + 1], attrib.vertices[i + 2]);
-    }
-    const size_t n_normals = attrib.normals.size() / 3, n_uvs = attrib.texcoords.size() / 2;
-    bool any_attributes = false;
-    for (const auto& shape : reader.GetShapes()) {
-      const auto& idx = shape.mesh.indices;
-      for (size_t i = 0; i + 2 < idx.size(); i += 3) {
-        glm::ivec3 t(idx[i].vertex_index, idx[i + 1].vertex_index, idx[i + 2].vertex_index);
-        for (int k = 0; k < 3; ++k) {
-          if (t[k] < 0 || size_t(t[k]) >= mesh.verts.size()) r.fail(p, "OBJ file " + path.string() + " has a face with a vertex index out of range");
-        }
-        mesh.tris.push_back(t);
-        // vn and vt, when every corner has them; OBJ's v points up the image, ours down.
-        TriangleAttributes a;
-        a.has_normals = a.has_uvs = true;
-        for (int k = 0; k < 3; ++k) {
-          const auto& c = idx[i + size_t(k)];
-          if (c.normal_index >= 0 && size_t(c.normal_index) < n_normals) {
-            const float* n = &attrib.normals[3 * size_t(c.normal_index)];
-            a.n[k] = Vec3(n[0], n[1], n[2]);
-          } else {
-            a.has_normals = false;
-          }
-          if (c.texcoord_index >= 0 && size_t(c.texcoord_index) < n_uvs) {
-            const float* uv = &attrib.texcoords[2 * size_t(c.texcoord_index)];
-            a.uv[k] = Vec2(uv[0], 1.0f - uv[1]);
-          } else {
-            a.has_uvs = false;
-          }
-        }
-        any_attributes = any_attributes || a.has_normals || a.has_uvs;
-        mesh.attributes.push_back(a);
-      }
-    }
-    if (!any_attributes) mesh.attributes.clear();
-    if (mesh.tris.empty()) r.fail(p, "OBJ file " + path.string() + " has no faces");
+    return mesh;
   }
 
   void read_light(const json& j, const std::string& p) {
@@ -454,11 +501,23 @@ struct Loader {
 
 }  // namespace
 
-LoadedScene parse_scene(const std::string& text, const std::string& file, const std::string& base_dir) {
-  Loader loader{JsonReader(file), base_dir, {}, {}, {}};
+LoadedScene parse_scene(const std::string& text, const std::string& file, const std::string& base_dir,
+                        const MitsubaOptions& mitsuba) {
+  json doc;
+  std::shared_ptr<const SourceMap> sources;
+  std::vector<std::string> warnings;
+  if (looks_like_xml(text)) {
+    TranslatedScene t = read_mitsuba(text, file, mitsuba);
+    doc = std::move(t.doc);
+    sources = std::move(t.sources);
+    warnings = std::move(t.warnings);
+  } else {
+    doc = parse_json_text(text, file);
+  }
+  Loader loader{JsonReader(file, sources), base_dir, {}, {}, {}};
   loader.out.scene = std::make_unique<Scene>();
   loader.out.scene->source_file = file;
-  const json doc = parse_json_text(text, file);
+  loader.out.warnings = std::move(warnings);
   loader.load(doc);
   if (loader.degenerate_ > 3) {
     loader.out.warnings.push_back(file + ": " + std::to_string(loader.degenerate_) +
@@ -467,7 +526,7 @@ LoadedScene parse_scene(const std::string& text, const std::string& file, const 
   return std::move(loader.out);
 }
 
-LoadedScene load_scene(const std::string& path) {
+LoadedScene load_scene(const std::string& path, const MitsubaOptions& mitsuba) {
   std::error_code ec;
   if (!fs::exists(path, ec)) throw InputError(path + ": scene file not found");
   if (fs::is_directory(path, ec)) throw InputError(path + ": is a directory, not a scene file");
@@ -479,7 +538,7 @@ LoadedScene load_scene(const std::string& path) {
   ss << in.rdbuf();
   if (in.bad()) throw InputError(path + ": error while reading the scene file");
   const std::string base = fs::path(path).parent_path().string();
-  return parse_scene(ss.str(), path, base.empty() ? "." : base);
+  return parse_scene(ss.str(), path, base.empty() ? "." : base, mitsuba);
 }
 
 }  // namespace caustica

@@ -2,6 +2,7 @@
 #pragma once
 #include <string>
 #include <vector>
+#include "core/mitsuba/translate.h"
 #include "core/scene.h"
 
 namespace caustica {
@@ -12,9 +13,11 @@ struct LoadedScene {
   size_t triangle_count = 0, sphere_count = 0;
 };
 
-// Throws InputError naming the file and the place in it.
-LoadedScene load_scene(const std::string& path);
+// Throws InputError naming the file and the place in it. A file whose text starts with '<' is a
+// Mitsuba XML scene (read by its root element, not its extension); anything else is our JSON.
+LoadedScene load_scene(const std::string& path, const MitsubaOptions& mitsuba = {});
 // Parses scene text; `file` names it in messages, `base_dir` resolves mesh paths.
-LoadedScene parse_scene(const std::string& text, const std::string& file, const std::string& base_dir);
+LoadedScene parse_scene(const std::string& text, const std::string& file, const std::string& base_dir,
+                        const MitsubaOptions& mitsuba = {});
 
 }  // namespace caustica

@@ -8,7 +8,7 @@
 namespace caustica {
 
 PathIntegrator::PathIntegrator(const JsonSource& settings, const RenderSettings& render) {
-  JsonReader r(settings.file);
+  JsonReader r(settings.file, settings.sources);
   r.check_object(settings.value, settings.pointer, {"rr_depth"});
   settings_.max_depth = render.max_depth;
   if (settings.value.contains("rr_depth")) {

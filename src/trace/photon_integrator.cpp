@@ -18,7 +18,7 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 }  // namespace
 
 PhotonSettings PhotonSettings::read(const JsonSource& src, const RenderSettings& render, bool final_gather) {
-  JsonReader r(src.file);
+  JsonReader r(src.file, src.sources);
   const auto& v = src.value;
   if (final_gather) {
     r.check_object(v, src.pointer, {"photons", "caustic_photons", "global_k", "caustic_k", "global_radius",

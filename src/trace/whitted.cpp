@@ -8,7 +8,7 @@ namespace caustica {
 
 WhittedIntegrator::WhittedIntegrator(const JsonSource& settings, const RenderSettings& render)
     : max_depth_(render.max_depth) {
-  JsonReader r(settings.file);
+  JsonReader r(settings.file, settings.sources);
   r.check_object(settings.value, settings.pointer, {});
 }
 

@@ -9,8 +9,18 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-// to_uv: {"scale": s or [su, sv], "rotate": degrees, "translate": [tu, tv]}, applied in that order.
+// to_uv: {"scale": s or [su, sv], "rotate": degrees, "translate": [tu, tv]}, applied in that order,
+// or a 2D affine matrix [[a, b, tu], [c, d, tv]] (u' = a u + b v + tu, v' = c u + d v + tv).
 UvTransform read_to_uv(const JsonReader& r, const json& j, const std::string& p) {
+  if (j.is_array()) {
+    if (j.size() != 2) r.fail(p, "expected {\"scale\", \"rotate\", \"translate\"} or 2 rows [[a, b, tu], [c, d, tv]]");
+    float m[2][3];
+    for (size_t row = 0; row < 2; ++row) {
+      if (!j[row].is_array() || j[row].size() != 3) r.fail(child(p, row), "expected a row of 3 numbers");
+      for (size_t col = 0; col < 3; ++col) m[row][col] = float(r.number(j[row][col], child(child(p, row), col)));
+    }
+    return UvTransform{m[0][0], m[0][1], m[1][0], m[1][1], m[0][2], m[1][2]};
+  }
   r.check_object(j, p, {"scale", "rotate", "translate"});
   Vec2 scale(1.0f), translate(0.0f);
   if (j.contains("scale")) {

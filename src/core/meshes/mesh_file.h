@@ -1,0 +1,41 @@
+// Triangle meshes read from files: OBJ (tinyobjloader), PLY and other formats (Assimp), and
+// Mitsuba's .serialized. Every reader checks what it reads: a non-finite number, an index out
+// of range or a truncated file is an InputError naming the file and the line or element.
+#pragma once
+#include <string>
+#include <vector>
+#include "core/shape.h"
+
+namespace caustica {
+
+// A material a mesh file brings along (OBJ's .mtl), in the terms of our materials.
+struct MeshMaterial {
+  std::string name;
+  Color kd{0.0f}, ks{0.0f}, ke{0.0f}, tf{0.0f};
+  float ns = 0.0f, ni = 1.0f, d = 1.0f;
+  int illum = -1;
+  std::string map_kd;  // path of the diffuse texture, relative to the mesh file's folder
+};
+
+struct MeshData {
+  std::vector<Vec3> verts;
+  std::vector<glm::ivec3> tris;
+  std::vector<TriangleAttributes> attributes;  // empty, or one per triangle
+  // Per triangle, an index into `materials` or -1 (only when the file names materials).
+  std::vector<int> material_ids;
+  std::vector<MeshMaterial> materials;
+  std::string material_dir;  // the folder map_kd paths are relative to
+};
+
+// Reads by the extension (.obj, .ply, .serialized; .gltf, .glb, .fbx through Assimp).
+// `shape_index` picks one shape of a .serialized file holding several.
+MeshData read_mesh_file(const std::string& path, int shape_index = 0);
+
+// The readers, for tests and fuzzing.
+MeshData read_obj(const std::string& path);
+MeshData read_assimp(const std::string& path);
+MeshData read_serialized(const std::string& path, int shape_index);
+// Parses .serialized data held in memory; `name` names it in messages.
+MeshData parse_serialized(const std::string& bytes, const std::string& name, int shape_index);
+
+}  // namespace caustica

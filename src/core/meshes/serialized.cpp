@@ -1,0 +1,189 @@
+// Mitsuba's .serialized meshes: per shape a little-endian header (uint16 0x041C, uint16 version
+// 3 or 4) and a zlib stream holding flags, (v4) a name, counts, positions, normals, UVs, colours
+// and indices. A table of shape offsets closes the file.
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <limits>
+#include <sstream>
+#include <zlib.h>
+#include "core/json_reader.h"
+#include "core/meshes/mesh_file.h"
+
+namespace caustica {
+namespace {
+
+constexpr uint16_t kMagic = 0x041C;
+enum : uint32_t {
+  kVertexNormals = 0x0001,
+  kTexcoords = 0x0002,
+  kColors = 0x0008,
+  kFaceNormals = 0x0010,
+  kSinglePrecision = 0x1000,
+  kDoublePrecision = 0x2000,
+};
+
+template <class T>
+T load(const std::string& bytes, size_t at) {
+  T v;
+  std::memcpy(&v, bytes.data() + at, sizeof(T));
+  return v;
+}
+
+// Inflates the zlib stream starting at `at`, up to `limit` bytes of output.
+std::string inflate_from(const std::string& bytes, size_t at, const std::string& name) {
+  z_stream zs{};
+  if (inflateInit(&zs) != Z_OK) throw InputError(name + ": zlib cannot be initialised");
+  zs.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(bytes.data() + at));
+  zs.avail_in = uInt(std::min<size_t>(bytes.size() - at, std::numeric_limits<uInt>::max()));
+  std::string out;
+  char buffer[1 << 16];
+  int rc = Z_OK;
+  while (rc == Z_OK) {
+    zs.next_out = reinterpret_cast<Bytef*>(buffer);
+    zs.avail_out = sizeof(buffer);
+    rc = inflate(&zs, Z_NO_FLUSH);
+    out.append(buffer, sizeof(buffer) - zs.avail_out);
+    if (rc == Z_BUF_ERROR && zs.avail_in == 0) break;
+    if (out.size() > (size_t(1) << 34)) {
+      inflateEnd(&zs);
+      throw InputError(name + ": the mesh inflates to more than 16 GiB");
+    }
+  }
+  inflateEnd(&zs);
+  if (rc != Z_STREAM_END) {
+    throw InputError(name + ": the compressed mesh data at byte " + std::to_string(at) +
+                     (rc == Z_DATA_ERROR ? " is corrupt" : " is truncated"));
+  }
+  return out;
+}
+
+// Reads the uncompressed stream of one shape.
+class StreamReader {
+ public:
+  StreamReader(const std::string& data, const std::string& name) : data_(data), name_(name) {}
+  template <class T>
+  T get(const char* what) {
+    need(sizeof(T), what);
+    const T v = load<T>(data_, at_);
+    at_ += sizeof(T);
+    return v;
+  }
+  void need(size_t n, const char* what) const {
+    if (n > data_.size() - at_) throw InputError(name_ + ": truncated while reading the " + what);
+  }
+  std::string cstring() {
+    const size_t end = data_.find('\0', at_);
+    if (end == std::string::npos) throw InputError(name_ + ": truncated while reading the shape name");
+    std::string s = data_.substr(at_, end - at_);
+    at_ = end + 1;
+    return s;
+  }
+  // n vectors of `dim` reals (float or double).
+  void reals(size_t n, int dim, bool dbl, float* out, const char* what) {
+    const size_t size = dbl ? 8 : 4;
+    if (n > (data_.size() - at_) / (size * size_t(dim))) throw InputError(name_ + ": truncated while reading the " + what);
+    for (size_t i = 0; i < n * size_t(dim); ++i) {
+      out[i] = dbl ? float(load<double>(data_, at_ + 8 * i)) : load<float>(data_, at_ + 4 * i);
+    }
+    at_ += n * size_t(dim) * size;
+  }
+  void skip(size_t n, const char* what) {
+    need(n, what);
+    at_ += n;
+  }
+
+ private:
+  const std::string& data_;
+  const std::string& name_;
+  size_t at_ = 0;
+};
+
+}  // namespace
+
+MeshData parse_serialized(const std::string& bytes, const std::string& name, int shape_index) {
+  if (bytes.size() < 4 || load<uint16_t>(bytes, 0) != kMagic) {
+    throw InputError(name + ": not a Mitsuba .serialized mesh (the file does not start with 0x041C)");
+  }
+  const uint16_t version = load<uint16_t>(bytes, 2);
+  if (version != 3 && version != 4) throw InputError(name + ": unsupported .serialized version " + std::to_string(version) + " (known: 3, 4)");
+  size_t offset = 0;
+  if (shape_index < 0) throw InputError(name + ": shape_index must not be negative");
+  if (shape_index > 0) {
+    // The closing table: one offset per shape (uint64 in v4, uint32 in v3), then the count.
+    if (bytes.size() < 8) throw InputError(name + ": truncated (no table of shapes)");
+    const uint32_t count = load<uint32_t>(bytes, bytes.size() - 4);
+    const size_t entry = version == 4 ? 8 : 4;
+    if (uint64_t(count) * entry + 4 > bytes.size()) throw InputError(name + ": the table of shapes is corrupt");
+    if (uint32_t(shape_index) >= count) {
+      throw InputError(name + ": shape_index " + std::to_string(shape_index) + " is out of range (the file holds " +
+                       std::to_string(count) + " shapes)");
+    }
+    const size_t table = bytes.size() - 4 - size_t(count) * entry;
+    offset = version == 4 ? size_t(load<uint64_t>(bytes, table + entry * size_t(shape_index)))
+                          : size_t(load<uint32_t>(bytes, table + entry * size_t(shape_index)));
+    if (offset > table || table - offset < 4 || load<uint16_t>(bytes, offset) != kMagic) {
+      throw InputError(name + ": the offset of shape " + std::to_string(shape_index) + " does not point at a shape");
+    }
+  }
+  const std::string data = inflate_from(bytes, offset + 4, name);
+  StreamReader in(data, name);
+  const uint32_t flags = in.get<uint32_t>("flags");
+  if (version == 4) in.cstring();
+  const uint64_t nv = in.get<uint64_t>("vertex count"), nt = in.get<uint64_t>("triangle count");
+  const bool dbl = (flags & kDoublePrecision) != 0;
+  if (nv == 0 || nt == 0) throw InputError(name + ": shape " + std::to_string(shape_index) + " has no triangles");
+  if (nv > (uint64_t(1) << 31) || nt > (uint64_t(1) << 31)) throw InputError(name + ": more than 2^31 vertices or triangles");
+  MeshData mesh;
+  std::vector<float> pos(3 * nv), normals, uvs;
+  in.reals(nv, 3, dbl, pos.data(), "vertex positions");
+  for (size_t i = 0; i < nv; ++i) {
+    mesh.verts.emplace_back(pos[3 * i], pos[3 * i + 1], pos[3 * i + 2]);
+    if (!is_finite(mesh.verts.back())) throw InputError(name + ": vertex " + std::to_string(i) + " is not finite");
+  }
+  if (flags & kVertexNormals) {
+    normals.resize(3 * nv);
+    in.reals(nv, 3, dbl, normals.data(), "vertex normals");
+  }
+  if (flags & kTexcoords) {
+    uvs.resize(2 * nv);
+    in.reals(nv, 2, dbl, uvs.data(), "texture coordinates");
+  }
+  if (flags & kColors) in.skip(size_t(nv) * 3 * (dbl ? 8 : 4), "vertex colours");
+  const bool wide = nv > std::numeric_limits<uint32_t>::max();
+  for (size_t t = 0; t < nt; ++t) {
+    glm::ivec3 tri;
+    for (int k = 0; k < 3; ++k) {
+      const uint64_t i = wide ? in.get<uint64_t>("triangle indices") : in.get<uint32_t>("triangle indices");
+      if (i >= nv) throw InputError(name + ": triangle " + std::to_string(t) + " has a vertex index out of range");
+      tri[k] = int(i);
+    }
+    mesh.tris.push_back(tri);
+  }
+  const bool use_normals = !normals.empty() && !(flags & kFaceNormals);
+  if (use_normals || !uvs.empty()) {
+    for (const glm::ivec3& t : mesh.tris) {
+      TriangleAttributes a;
+      a.has_normals = use_normals;
+      a.has_uvs = !uvs.empty();
+      for (int k = 0; k < 3; ++k) {
+        const size_t v = size_t(t[k]);
+        if (a.has_normals) a.n[k] = Vec3(normals[3 * v], normals[3 * v + 1], normals[3 * v + 2]);
+        if (a.has_uvs) a.uv[k] = Vec2(uvs[2 * v], uvs[2 * v + 1]);
+      }
+      a.has_normals = a.has_normals && is_finite(a.n[0]) && is_finite(a.n[1]) && is_finite(a.n[2]);
+      mesh.attributes.push_back(a);
+    }
+  }
+  return mesh;
+}
+
+MeshData read_serialized(const std::string& path, int shape_index) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError("mesh file cannot be read: " + path);
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return parse_serialized(ss.str(), path, shape_index);
+}
+
+}  // namespace caustica
