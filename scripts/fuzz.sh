@@ -1,25 +1,43 @@
 #!/usr/bin/env bash
-# Fuzzes the scene loader with libFuzzer + ASan + UBSan for SECONDS (default 600) in build-fuzz/.
-# Usage: scripts/fuzz.sh [SECONDS]. Crashes, hangs and leaks land in build-fuzz/artifacts/.
+# Fuzzes a reader with libFuzzer + ASan + UBSan in build-fuzz/.
+# Usage: scripts/fuzz.sh [TARGET] [SECONDS]
+#   TARGET: json (the JSON scene loader, default), xml (Mitsuba scenes), mesh (OBJ, PLY, .serialized)
+#   SECONDS: default 600. Crashes, hangs and leaks land in build-fuzz/artifacts-TARGET/.
 # CAUSTICA_FUZZ_JOBS=1 limits the build to one job (default: all cores).
 set -euo pipefail
 cd "$(dirname "$0")/.."
+target=json
+if [[ "${1:-}" =~ ^(json|xml|mesh)$ ]]; then target=$1; shift; fi
 seconds="${1:-600}"
 bash scripts/setup.sh clang-14 libfuzzer-14-dev
 CC=clang-14 CXX=clang++-14 cmake -S . -B build-fuzz -DCAUSTICA_FUZZ=ON -DCAUSTICA_TESTS=OFF \
   -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
-cmake --build build-fuzz -j"${CAUSTICA_FUZZ_JOBS:-$(nproc)}" --target scene_fuzzer
+case $target in
+  json) exe=scene_fuzzer; dict=fuzz/json.dict ;;
+  xml) exe=xml_fuzzer; dict=fuzz/xml.dict ;;
+  mesh) exe=mesh_fuzzer; dict=fuzz/mesh.dict ;;
+esac
+cmake --build build-fuzz -j"${CAUSTICA_FUZZ_JOBS:-$(nproc)}" --target "$exe"
 
-# Seed corpus: every shipped scene and test scene (the fuzzer adds what it finds to it).
-mkdir -p build-fuzz/corpus build-fuzz/artifacts
-cp scenes/*.json tests/data/*.json build-fuzz/corpus/
-# Regression inputs too, except big ones (they would raise libFuzzer's default -max_len).
-if [ -d tests/data/fuzz ]; then find tests/data/fuzz -type f -size -64k -exec cp {} build-fuzz/corpus/ \;; fi
+# Seed corpus: the shipped and test inputs of that reader (the fuzzer adds what it finds to it).
+corpus=build-fuzz/corpus-$target artifacts=build-fuzz/artifacts-$target
+mkdir -p "$corpus" "$artifacts"
+case $target in
+  json)
+    cp scenes/*.json tests/data/*.json "$corpus"/
+    # Regression inputs too, except big ones (they would raise libFuzzer's default -max_len).
+    if [ -d tests/data/fuzz ]; then find tests/data/fuzz -type f -size -64k -exec cp {} "$corpus"/ \;; fi ;;
+  xml)
+    find scenes tests/data -name '*.xml' -size -64k -exec cp {} "$corpus"/ \; ;;
+  mesh)
+    # The first byte picks the reader: 0 OBJ, 1 PLY, 2 .serialized.
+    python3 fuzz/mesh_seeds.py "$corpus" ;;
+esac
 
-log=build-fuzz/fuzz.log
+log=build-fuzz/fuzz-$target.log
 set +e
-build-fuzz/scene_fuzzer build-fuzz/corpus -max_total_time="$seconds" -timeout=10 -rss_limit_mb=4096 \
-  -dict=fuzz/json.dict -artifact_prefix=build-fuzz/artifacts/ -print_final_stats=1 2>&1 | tee "$log" \
+"build-fuzz/$exe" "$corpus" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=4096 \
+  -dict="$dict" -artifact_prefix="$artifacts/" -print_final_stats=1 2>&1 | tee "$log" \
   | grep -E --line-buffered "pulse|DONE|ERROR|SUMMARY|artifact|Test unit written"
 status=${PIPESTATUS[0]}
 set -e

@@ -3,7 +3,7 @@
 set -euo pipefail
 packages=(build-essential cmake pkg-config libglm-dev libnanoflann-dev libopenimageio-dev
           libtbb-dev catch2 nlohmann-json3-dev libcli11-dev libtinyobjloader-dev fonts-dejavu-core
-          openimageio-tools libpugixml-dev libassimp-dev zlib1g-dev)
+          openimageio-tools libpugixml-dev zlib1g-dev)
 packages+=("$@")
 missing=()
 for p in "${packages[@]}"; do

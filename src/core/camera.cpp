@@ -52,10 +52,23 @@ void Camera::update_tan() {
 
 float Camera::vfov_degrees() const { return 2.0f * std::atan(tan_half_) * 180.0f / kPi; }
 
+namespace {
+Ray film_ray(const Vec3& o, const Vec3& forward, const Vec3& right, const Vec3& up, float tan_half, float aspect,
+             float fx, float fy, int film_w, int film_h) {
+  const float sx = (2.0f * fx / float(film_w) - 1.0f) * tan_half * aspect;
+  const float sy = (1.0f - 2.0f * fy / float(film_h)) * tan_half;
+  return Ray{o, glm::normalize(forward + sx * right + sy * up), kInfinity};
+}
+}  // namespace
+
 Ray Camera::generate_ray(float x, float y) const {
-  const float sx = (2.0f * (x + float(crop_x_)) / float(film_width_) - 1.0f) * tan_half_ * aspect_;
-  const float sy = (1.0f - 2.0f * (y + float(crop_y_)) / float(film_height_)) * tan_half_;
-  return Ray{position_, glm::normalize(forward_ + sx * right_ + sy * up_), kInfinity};
+  return film_ray(position_, forward_, right_, up_, tan_half_, aspect_, x + float(crop_x_), y + float(crop_y_),
+                  film_width_, film_height_);
+}
+
+Ray Camera::generate_ray(int px, int py, const Vec2& jitter) const {
+  return film_ray(position_, forward_, right_, up_, tan_half_, aspect_, float(px + crop_x_) + jitter.x,
+                  float(py + crop_y_) + jitter.y, film_width_, film_height_);
 }
 
 bool Camera::project(const Vec3& p, float& x, float& y) const {

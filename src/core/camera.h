@@ -13,12 +13,20 @@ class Camera {
   Camera(const Vec3& position, const Vec3& look_at, const Vec3& up, float vfov_degrees, int width, int height);
   // Ray through image position (x, y) in pixels, y down from the top (crop window applied).
   Ray generate_ray(float x, float y) const;
+  // Ray through image pixel (px, py) at offset `jitter` in [0, 1)^2: the same ray whether the
+  // pixel is rendered in a crop window or on the whole film.
+  Ray generate_ray(int px, int py, const Vec2& jitter) const;
   // Projects a world point to image coordinates; false when behind the camera or off the image.
   bool project(const Vec3& p, float& x, float& y) const;
   // Image (crop window) size in pixels.
   int width() const { return width_; }
   int height() const { return height_; }
   const Vec3& position() const { return position_; }
+  // The film and the crop window's corner on it.
+  int film_width() const { return film_width_; }
+  int film_height() const { return film_height_; }
+  int crop_x() const { return crop_x_; }
+  int crop_y() const { return crop_y_; }
   float vfov_degrees() const;
   // The whole film; clears a crop window.
   void set_resolution(int width, int height);

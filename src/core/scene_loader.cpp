@@ -134,13 +134,13 @@ struct Loader {
     }
   }
 
-  uint32_t material_ref(const json& obj, const std::string& p) {
-    const std::string name = r.string(r.require(obj, p, "material"), child(p, "material"));
+  uint32_t material_ref(const json& obj, const std::string& p, const char* key = "material") {
+    const std::string name = r.string(r.require(obj, p, key), child(p, key));
     auto it = material_ids.find(name);
     if (it == material_ids.end()) {
       std::string known;
       for (const auto& kv : material_ids) known += (known.empty() ? "" : ", ") + kv.first;
-      r.fail(child(p, "material"), "unknown material \"" + name + "\" (known: " + known + ")");
+      r.fail(child(p, key), "unknown material \"" + name + "\" (known: " + known + ")");
     }
     return it->second;
   }
@@ -177,13 +177,20 @@ struct Loader {
       add_triangle(shapes, o, o + e1 + e2, o + e2, p, &a);
     } else if (type == "mesh") {
       r.check_object(j, p, {"type", "name", "material", "flip_normal", "vertices", "indices", "normals", "uvs", "file",
-                            "shape_index", "scale", "translate", "to_world", "face_normals"});
+                            "shape_index", "scale", "translate", "to_world", "face_normals", "default_material"});
+      if (j.contains("default_material") && j.contains("material")) {
+        r.fail(child(p, "default_material"), "give material or default_material, not both");
+      }
       MeshData mesh = read_mesh(j, p);
       if (!j.contains("material") && !mesh.material_ids.empty()) {
         add_mesh_with_its_materials(j, p, mesh);
         return;
       }
       for (size_t i = 0; i < mesh.tris.size(); ++i) add_mesh_triangle(mesh, i, shapes, p);
+      if (j.contains("default_material")) {
+        add_object(std::move(shapes), material_ref(j, p, "default_material"), j, p);
+        return;
+      }
     } else {
       r.fail(child(p, "type"), "unknown object type \"" + type + "\" (known: sphere, triangle, quad, mesh)");
     }
@@ -242,6 +249,10 @@ struct Loader {
     std::map<int, std::vector<Primitive>> groups;
     for (size_t i = 0; i < mesh.tris.size(); ++i) add_mesh_triangle(mesh, i, groups[mesh.material_ids[i]], p);
     for (auto& [id, shapes] : groups) {
+      if (id < 0 && j.contains("default_material")) {
+        add_object(std::move(shapes), material_ref(j, p, "default_material"), j, p);
+        continue;
+      }
       const std::string key = file + (id >= 0 ? "#" + mesh.materials[size_t(id)].name : "#(none)");
       auto it = material_ids.find(key);
       if (it == material_ids.end()) {
@@ -361,18 +372,7 @@ struct Loader {
                                             [&](const json& x, const std::string& xp) { return r.vec3(x, xp); });
       const auto uvs = per_vertex<Vec2>(j, p, "uvs", verts.size(),
                                         [&](const json& x, const std::string& xp) { return r.vec2(x, xp, "[u, v]"); });
-      if (!normals.empty() || !uvs.empty()) {
-        for (const glm::ivec3& t : mesh.tris) {
-          TriangleAttributes a;
-          a.has_normals = !normals.empty();
-          a.has_uvs = !uvs.empty();
-          for (int k = 0; k < 3; ++k) {
-            if (a.has_normals) a.n[k] = normals[size_t(t[k])];
-            if (a.has_uvs) a.uv[k] = uvs[size_t(t[k])];
-          }
-          mesh.attributes.push_back(a);
-        }
-      }
+      set_vertex_attributes(mesh, normals, uvs);
     } else {
       const std::string file = r.string(r.require(j, p, "file"), child(p, "file"));
       const int shape_index = j.contains("shape_index") ? int(r.integer(j["shape_index"], child(p, "shape_index"), 0, INT32_MAX)) : 0;
@@ -507,7 +507,7 @@ LoadedScene parse_scene(const std::string& text, const std::string& file, const 
   std::shared_ptr<const SourceMap> sources;
   std::vector<std::string> warnings;
   if (looks_like_xml(text)) {
-    TranslatedScene t = read_mitsuba(text, file, mitsuba);
+    TranslatedScene t = read_mitsuba(text, file, base_dir, mitsuba);
     doc = std::move(t.doc);
     sources = std::move(t.sources);
     warnings = std::move(t.warnings);

@@ -40,6 +40,8 @@ Image render_image(const Scene& scene, const Integrator& integrator, const Rende
   stats = RenderStats{};
   auto cancelled = [&] { return options.cancel && options.cancel->load(std::memory_order_relaxed); };
 
+  const int crop_x = scene.camera.crop_x(), crop_y = scene.camera.crop_y();
+  const uint64_t film_w = uint64_t(scene.camera.film_width());
   for (int pass = 0;; ++pass) {
     if (!timed && pass >= options.spp) break;
     if (timed && pass > 0) {
@@ -54,13 +56,16 @@ Image render_image(const Scene& scene, const Integrator& integrator, const Rende
         for (int y = y0; y < std::min(y0 + ts, h); ++y) {
           for (int x = x0; x < std::min(x0 + ts, w); ++x) {
             const uint64_t pixel = uint64_t(y) * w + x;
-            Sampler sampler(hash_seed(pixel, uint64_t(pass), options.seed));
+            // Random streams follow the film pixel, so that a crop window renders the same
+            // pixels as the whole film.
+            const uint64_t film_pixel = uint64_t(y + crop_y) * film_w + uint64_t(x + crop_x);
+            Sampler sampler(hash_seed(film_pixel, uint64_t(pass), options.seed));
             if (want_aov) {
               sampler.aov = &aov_pass[pixel * kA];
               std::fill(sampler.aov, sampler.aov + kA, 0.0f);
             }
-            const Vec2 jitter = pixel_jitter(pixel, uint64_t(pass), options.seed);
-            const Ray ray = scene.camera.generate_ray(x + jitter.x, y + jitter.y);
+            const Vec2 jitter = pixel_jitter(film_pixel, uint64_t(pass), options.seed);
+            const Ray ray = scene.camera.generate_ray(x, y, jitter);
             Color L = integrator.Li(ray, scene, sampler);
             if (!is_finite(L) || L.r < 0 || L.g < 0 || L.b < 0) {
               L = Color(0.0f);

@@ -1,10 +1,28 @@
 // Dispatch by extension and the checks every reader shares.
 #include "core/meshes/mesh_file.h"
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include "core/json_reader.h"
 
 namespace caustica {
+
+void set_vertex_attributes(MeshData& mesh, const std::vector<Vec3>& normals, const std::vector<Vec2>& uvs) {
+  mesh.attributes.clear();
+  if (normals.empty() && uvs.empty()) return;
+  for (const glm::ivec3& t : mesh.tris) {
+    TriangleAttributes a;
+    a.has_normals = !normals.empty();
+    a.has_uvs = !uvs.empty();
+    for (int k = 0; k < 3; ++k) {
+      if (a.has_normals) a.n[k] = normals[size_t(t[k])];
+      if (a.has_uvs) a.uv[k] = uvs[size_t(t[k])];
+    }
+    a.has_normals = a.has_normals && is_finite(a.n[0]) && is_finite(a.n[1]) && is_finite(a.n[2]);
+    a.has_uvs = a.has_uvs && std::isfinite(a.uv[0].x + a.uv[0].y + a.uv[1].x + a.uv[1].y + a.uv[2].x + a.uv[2].y);
+    mesh.attributes.push_back(a);
+  }
+}
 
 MeshData read_mesh_file(const std::string& path, int shape_index) {
   std::error_code ec;
@@ -15,8 +33,8 @@ MeshData read_mesh_file(const std::string& path, int shape_index) {
   if (ext != ".serialized" && shape_index != 0) throw InputError(path + ": shape_index applies to .serialized files only");
   if (ext == ".obj") return read_obj(path);
   if (ext == ".serialized") return read_serialized(path, shape_index);
-  if (ext == ".ply" || ext == ".gltf" || ext == ".glb" || ext == ".fbx") return read_assimp(path);
-  throw InputError(path + ": unknown mesh format \"" + ext + "\" (known: .obj, .ply, .serialized, .gltf, .glb, .fbx)");
+  if (ext == ".ply") return read_ply(path);
+  throw InputError(path + ": unknown mesh format \"" + ext + "\" (known: .obj, .ply, .serialized)");
 }
 
 }  // namespace caustica

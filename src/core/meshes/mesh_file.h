@@ -1,4 +1,4 @@
-// Triangle meshes read from files: OBJ (tinyobjloader), PLY and other formats (Assimp), and
+// Triangle meshes read from files: OBJ (tinyobjloader), PLY (our reader: ply.cpp says why) and
 // Mitsuba's .serialized. Every reader checks what it reads: a non-finite number, an index out
 // of range or a truncated file is an InputError naming the file and the line or element.
 #pragma once
@@ -27,13 +27,18 @@ struct MeshData {
   std::string material_dir;  // the folder map_kd paths are relative to
 };
 
-// Reads by the extension (.obj, .ply, .serialized; .gltf, .glb, .fbx through Assimp).
+// Per-triangle shading data from per-vertex normals and UVs (either may be empty, or one per
+// vertex); a triangle with a non-finite normal or UV goes without it.
+void set_vertex_attributes(MeshData& mesh, const std::vector<Vec3>& normals, const std::vector<Vec2>& uvs);
+
+// Reads by the extension (.obj, .ply, .serialized).
 // `shape_index` picks one shape of a .serialized file holding several.
 MeshData read_mesh_file(const std::string& path, int shape_index = 0);
 
 // The readers, for tests and fuzzing.
 MeshData read_obj(const std::string& path);
-MeshData read_assimp(const std::string& path);
+MeshData read_ply(const std::string& path);
+MeshData parse_ply(const std::string& bytes, const std::string& name);
 MeshData read_serialized(const std::string& path, int shape_index);
 // Parses .serialized data held in memory; `name` names it in messages.
 MeshData parse_serialized(const std::string& bytes, const std::string& name, int shape_index);

@@ -11,10 +11,23 @@ namespace caustica {
 namespace {
 
 // tinyobjloader reads "nan", "inf" and garbage in v/vn/vt lines as 0 without a word: every
-// number there must be finite, else the error names the file and the line.
+// number there must be finite, else the error names the file and the line. An mtllib must be
+// a regular file (a FIFO or /dev/zero would block the reader or never end).
 void check_obj_numbers(std::istream& in, const std::string& file) {
   std::string line;
   for (size_t number = 1; std::getline(in, line); ++number) {
+    if (line.compare(0, 7, "mtllib ") == 0) {
+      std::istringstream names(line.substr(7));
+      std::string name;
+      while (names >> name) {
+        const std::filesystem::path mtl = std::filesystem::path(file).parent_path() / name;
+        std::error_code ec;
+        if (std::filesystem::exists(mtl, ec) && !std::filesystem::is_regular_file(mtl, ec)) {
+          throw InputError(file + ":" + std::to_string(number) + ": mtllib " + name + " is not a regular file");
+        }
+      }
+      continue;
+    }
     if (line.size() < 2 || line[0] != 'v' || !(line[1] == ' ' || line[1] == '\t' || line[1] == 'n' || line[1] == 't')) continue;
     std::istringstream tokens(line.substr(line[1] == ' ' || line[1] == '\t' ? 1 : 2));
     std::string tok;

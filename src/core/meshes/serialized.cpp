@@ -160,21 +160,13 @@ MeshData parse_serialized(const std::string& bytes, const std::string& name, int
     }
     mesh.tris.push_back(tri);
   }
-  const bool use_normals = !normals.empty() && !(flags & kFaceNormals);
-  if (use_normals || !uvs.empty()) {
-    for (const glm::ivec3& t : mesh.tris) {
-      TriangleAttributes a;
-      a.has_normals = use_normals;
-      a.has_uvs = !uvs.empty();
-      for (int k = 0; k < 3; ++k) {
-        const size_t v = size_t(t[k]);
-        if (a.has_normals) a.n[k] = Vec3(normals[3 * v], normals[3 * v + 1], normals[3 * v + 2]);
-        if (a.has_uvs) a.uv[k] = Vec2(uvs[2 * v], uvs[2 * v + 1]);
-      }
-      a.has_normals = a.has_normals && is_finite(a.n[0]) && is_finite(a.n[1]) && is_finite(a.n[2]);
-      mesh.attributes.push_back(a);
-    }
+  std::vector<Vec3> n;
+  std::vector<Vec2> uv;
+  if (!(flags & kFaceNormals)) {
+    for (size_t i = 0; i < normals.size(); i += 3) n.emplace_back(normals[i], normals[i + 1], normals[i + 2]);
   }
+  for (size_t i = 0; i < uvs.size(); i += 2) uv.emplace_back(uvs[i], uvs[i + 1]);
+  set_vertex_attributes(mesh, n, uv);
   return mesh;
 }
 

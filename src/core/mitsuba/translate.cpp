@@ -217,7 +217,10 @@ class Translator {
     const fs::path path(name);
     std::error_code ec;
     if (path.is_absolute()) return name;
-    std::vector<fs::path> tried = {fs::path(o.file).parent_path() / path};
+    // Next to the file naming it, then (for included files) next to the scene, as Mitsuba's
+    // file resolver does, then in the <path> folders.
+    std::vector<fs::path> tried = {fs::path(o.dir) / path};
+    if (o.dir != scene_.root().dir) tried.push_back(fs::path(scene_.root().dir) / path);
     for (const std::string& dir : scene_.search_paths) tried.push_back(fs::path(dir) / path);
     for (const fs::path& t : tried) {
       if (fs::exists(t, ec)) return fs::absolute(t, ec).string();
@@ -354,6 +357,13 @@ class Translator {
     return m - 1;
   }
 
+  // Mitsuba 0.6's strictNormals: Caustica always drops light the shading normals would leak.
+  void strict_normals(Props& props) {
+    if (const XmlProperty* sn = props.get("strict_normals")) {
+      if (!boolean(*sn)) warn(sn->where, "strict_normals false: Caustica always uses strict normals");
+    }
+  }
+
   void integrator(const XmlObject& o0) {
     const XmlObject* o = &o0;
     while (o->type == "moment" || o->type == "aov") {
@@ -381,10 +391,12 @@ class Translator {
       const XmlProperty* rr = props.get("rr_depth");
       integ["rr_depth"] = rr ? integer(*rr) : 5;
       if (rr) note("/integrator/rr_depth", rr->where);
+      strict_normals(props);
     } else if (o->type == "direct") {
       integ = {{"type", "path"}};
       doc["render"]["max_depth"] = 1;
       props.ignore({"emitter_samples", "bsdf_samples", "shading_samples"});
+      strict_normals(props);
       warn(o->where, "\"direct\" is rendered as the path tracer with one bounce (emitter and BSDF sampling by MIS)");
     } else if (o->type == "photonmapper" || o->type == "sppm" || o->type == "ppm") {
       integ = {{"type", "photon"}};
@@ -483,11 +495,27 @@ class Translator {
     }
     json j = {{"type", o.type}};
     const bool upgraded = scene_.version.size() && scene_.version[0] < '2';
+    // A conductor's exterior index divides eta and k (Mitsuba: eta / ext_eta, k / ext_eta).
+    double ext_eta = 1.0;
+    if (const XmlProperty* e = o.prop("ext_eta")) {
+      if (o.type != "conductor" && o.type != "roughconductor") throw InputError(e->where + ": ext_eta belongs to conductors");
+      ext_eta = e->kind == XmlProperty::String ? -1.0 : number(*e);
+      if (ext_eta != 1.0 && (!o.prop("eta") || !o.prop("k"))) {
+        throw InputError(e->where + ": ext_eta other than 1 needs eta and k given as numbers or colours");
+      }
+      if (!(ext_eta > 0.0)) throw InputError(e->where + ": ext_eta must be a positive number");
+    }
     for (const XmlProperty& prop : o.props) {
       if (prop.name == "sample_visible" || prop.name == "specular_sampling_weight") continue;  // sampling only
+      if (prop.name == "ext_eta") continue;
       std::string name = prop.name;
       if (upgraded && o.type == "diffuse" && name == "diffuse_reflectance") name = "reflectance";
       j[name] = value(prop);
+      if (ext_eta != 1.0 && (name == "eta" || name == "k")) {
+        if (j[name].is_number()) j[name] = j[name].get<double>() / ext_eta;
+        else if (j[name].is_array()) for (auto& c : j[name]) c = c.get<double>() / ext_eta;
+        else throw InputError(prop.where + ": with ext_eta, " + name + " must be a number or a colour");
+      }
       note(p + "/" + name, prop.where);
     }
     json nested = json::array();
@@ -630,6 +658,13 @@ class Translator {
     }
     json obj = {{"name", o.id.empty() ? o.type : o.id}, {"material", material}};
     note(p + "/material", bsdf_obj ? bsdf_obj->where : o.where);
+    if (o.type == "obj" && !bsdf_obj && !area) {
+      // An OBJ with an .mtl and no BSDF in the scene keeps its own materials (Mitsuba would
+      // give it the default diffuse, which faces without a material still get).
+      obj.erase("material");
+      obj["default_material"] = material;
+      note(p + "/default_material", o.where);
+    }
     const glm::dmat4 m = parent * (props.get("to_world") ? transform(*props.get("to_world")) : glm::dmat4(1.0));
     if (const XmlProperty* f = props.get("flip_normals")) {
       obj["flip_normal"] = boolean(*f);
@@ -796,8 +831,9 @@ TranslatedScene translate_mitsuba(const XmlScene& scene, const MitsubaOptions& o
   return Translator(scene, options).run();
 }
 
-TranslatedScene read_mitsuba(const std::string& text, const std::string& file, const MitsubaOptions& options) {
-  const XmlScene scene = parse_mitsuba_xml(text, file, options.xml);
+TranslatedScene read_mitsuba(const std::string& text, const std::string& file, const std::string& dir,
+                             const MitsubaOptions& options) {
+  const XmlScene scene = parse_mitsuba_xml(text, file, dir, options.xml);
   return translate_mitsuba(scene, options);
 }
 

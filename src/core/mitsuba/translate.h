@@ -25,7 +25,8 @@ struct TranslatedScene {
 
 TranslatedScene translate_mitsuba(const XmlScene& scene, const MitsubaOptions& options);
 
-// Reads and translates a Mitsuba XML text (`file` names it and resolves relative paths).
-TranslatedScene read_mitsuba(const std::string& text, const std::string& file, const MitsubaOptions& options);
+// Reads and translates a Mitsuba XML text (`file` names it; relative paths resolve against `dir`).
+TranslatedScene read_mitsuba(const std::string& text, const std::string& file, const std::string& dir,
+                             const MitsubaOptions& options);
 
 }  // namespace caustica

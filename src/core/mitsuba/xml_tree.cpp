@@ -35,6 +35,7 @@ constexpr int kMaxNesting = 64;
 // One file of the scene (the main file or an include) and what is needed to place errors in it.
 struct Source {
   std::string name, text;
+  std::string dir;  // relative paths in this file resolve against it
   std::vector<size_t> line_starts;
   pugi::xml_document doc;
 
@@ -87,12 +88,12 @@ class Parser {
     for (const auto& [k, v] : options.defines) params_[k] = v;
   }
 
-  void parse_main(const std::string& text, const std::string& file) {
-    Source& src = load_source(text, file);
+  void parse_main(const std::string& text, const std::string& file, const std::string& dir) {
+    Source& src = load_source(text, file, dir);
     const pugi::xml_node root = root_of(src);
     auto scene = std::make_unique<XmlObject>();
     scene->tag = "scene";
-    scene->file = file;
+    scene->dir = dir;
     scene->where = where(src, root);
     XmlObject* s = scene.get();
     scene_.objects.push_back(std::move(scene));
@@ -123,9 +124,10 @@ class Parser {
     return src.place(node.offset_debug()) + ": " + tag + ">";
   }
 
-  Source& load_source(const std::string& text, const std::string& file) {
+  Source& load_source(const std::string& text, const std::string& file, const std::string& dir) {
     auto src = std::make_unique<Source>();
     src->name = file;
+    src->dir = dir;
     src->text = text;
     src->index_lines();
     const pugi::xml_parse_result result = src->doc.load_buffer(src->text.data(), src->text.size());
@@ -153,26 +155,32 @@ class Parser {
     return major < 2;
   }
 
-  // Replaces $name by its value; the longest names first, as Mitsuba does.
+  // Replaces each $name (letters, digits, underscores) by its value; "\\$" is a dollar sign.
+  // Mitsuba replaces the longest defined names first, so that $r also matched inside $rough; a
+  // whole-name match makes $rough with only r defined an error instead of "0.5ough".
   std::string subst(const Source& src, const pugi::xml_node& node, const std::string& value) const {
     if (value.find('$') == std::string::npos) return value;
-    std::string out = value;
-    std::vector<std::string> keys;
-    for (const auto& kv : params_) keys.push_back(kv.first);
-    std::sort(keys.begin(), keys.end(), [](const std::string& a, const std::string& b) { return a.size() > b.size(); });
-    for (const std::string& k : keys) {
-      const std::string pat = "$" + k;
-      for (size_t at = out.find(pat); at != std::string::npos; at = out.find(pat, at + params_.at(k).size())) {
-        out.replace(at, pat.size(), params_.at(k));
+    std::string out;
+    for (size_t i = 0; i < value.size(); ++i) {
+      if (value[i] == '\\' && i + 1 < value.size() && value[i + 1] == '$') {
+        out += '$';
+        ++i;
+        continue;
       }
-    }
-    const size_t left = out.find('$');
-    if (left != std::string::npos) {
-      size_t end = left + 1;
-      while (end < out.size() && (std::isalnum(static_cast<unsigned char>(out[end])) || out[end] == '_')) ++end;
-      fail(src, node, "unknown parameter \"" + out.substr(left, end - left) +
-                          "\": no <default name=\"" + out.substr(left + 1, end - left - 1) + "\" value=...> and no -D " +
-                          out.substr(left + 1, end - left - 1) + "=...");
+      if (value[i] != '$') {
+        out += value[i];
+        continue;
+      }
+      size_t end = i + 1;
+      while (end < value.size() && (std::isalnum(static_cast<unsigned char>(value[end])) || value[end] == '_')) ++end;
+      const std::string name = value.substr(i + 1, end - i - 1);
+      const auto it = params_.find(name);
+      if (name.empty()) fail(src, node, "a \"$\" without a parameter name in \"" + value + "\"");
+      if (it == params_.end()) {
+        fail(src, node, "unknown parameter \"$" + name + "\": no <default name=\"" + name + "\" value=...> and no -D " + name + "=...");
+      }
+      out += it->second;
+      i = end - 1;
     }
     return out;
   }
@@ -250,7 +258,7 @@ class Parser {
       } else if (tag == "path") {
         if (&obj != scene_.objects.front().get()) fail(src, c, "<path> belongs directly in the <scene>");
         fs::path dir = required_attr(src, c, "value");
-        if (dir.is_relative()) dir = fs::path(src.name).parent_path() / dir;
+        if (dir.is_relative()) dir = fs::path(src.dir) / dir;
         std::error_code ec;
         if (!fs::is_directory(dir, ec)) fail(src, c, "the folder " + dir.string() + " does not exist");
         scene_.search_paths.insert(scene_.search_paths.begin(), dir.string());
@@ -280,7 +288,7 @@ class Parser {
         o->type = attr(src, c, "type");
         o->id = attr(src, c, "id");
         o->where = where(src, c);
-        o->file = src.name;
+        o->dir = src.dir;
         if (o->type.empty() && tag != "scene") fail(src, c, "<" + tag + "> needs a type attribute");
         XmlObject* raw = o.get();
         scene_.objects.push_back(std::move(o));
@@ -310,12 +318,14 @@ class Parser {
     if (include_depth_ >= kMaxIncludeDepth) fail(src, node, "includes nested deeper than " + std::to_string(kMaxIncludeDepth) + " (a cycle?)");
     const std::string path = resolve(src, name);
     if (path.empty()) fail(src, node, "included file not found: " + name);
-    std::ifstream in(path, std::ios::binary);
     std::error_code ec;
-    if (!in || !fs::is_regular_file(path, ec)) fail(src, node, "cannot read the included file " + path);
+    // Only regular files: a FIFO or a device would block or never end.
+    if (!fs::is_regular_file(path, ec)) fail(src, node, "the included path is not a regular file: " + path);
+    std::ifstream in(path, std::ios::binary);
+    if (!in) fail(src, node, "cannot read the included file " + path);
     std::ostringstream ss;
     ss << in.rdbuf();
-    Source& inc = load_source(ss.str(), path);
+    Source& inc = load_source(ss.str(), path, fs::path(path).parent_path().string());
     const pugi::xml_node root = inc.doc.document_element();
     if (!root) throw InputError(path + ": the XML document has no element");
     ++include_depth_;
@@ -336,8 +346,11 @@ class Parser {
     std::error_code ec;
     const fs::path p(name);
     if (p.is_absolute()) return fs::exists(p, ec) ? p.string() : std::string();
-    const fs::path here = fs::path(src.name).parent_path() / p;
+    const fs::path here = fs::path(src.dir) / p;
     if (fs::exists(here, ec)) return here.string();
+    // An included file's paths may be relative to the main scene, as Mitsuba's resolver allows.
+    const fs::path main = fs::path(scene_.root().dir) / p;
+    if (fs::exists(main, ec)) return main.string();
     for (const std::string& dir : scene_.search_paths) {
       if (fs::exists(fs::path(dir) / p, ec)) return (fs::path(dir) / p).string();
     }
@@ -446,6 +459,9 @@ class Parser {
       if (node.attribute("value")) fail(src, node, "give value or filename, not both");
       const std::string path = resolve(src, attr(src, node, "filename"));
       if (path.empty()) fail(src, node, "spectrum file not found: " + attr(src, node, "filename"));
+      std::error_code ec;
+      if (!fs::is_regular_file(path, ec)) fail(src, node, "the spectrum path is not a regular file: " + path);
+      if (fs::file_size(path, ec) > (size_t(1) << 24)) fail(src, node, "the spectrum file " + path + " is larger than 16 MiB");
       std::ifstream in(path);
       std::string line;
       while (std::getline(in, line)) {
@@ -565,10 +581,11 @@ class Parser {
 
 }  // namespace
 
-XmlScene parse_mitsuba_xml(const std::string& text, const std::string& file, const XmlOptions& options) {
+XmlScene parse_mitsuba_xml(const std::string& text, const std::string& file, const std::string& dir,
+                           const XmlOptions& options) {
   XmlScene scene;
   Parser parser(options, scene);
-  parser.parse_main(text, file);
+  parser.parse_main(text, file, dir.empty() ? "." : dir);
   return scene;
 }
 

@@ -41,7 +41,7 @@ struct XmlChild {
 struct XmlObject {
   std::string tag, type, id;
   std::string where;  // "scene.xml:12:5: <bsdf type="diffuse">"
-  std::string file;   // the file it was read from (relative paths in it resolve against its folder)
+  std::string dir;    // the folder of the file it was read from: relative paths resolve against it
   std::vector<XmlProperty> props;
   std::vector<XmlChild> children;
 
@@ -58,7 +58,9 @@ struct XmlScene {
 // True when the text's first element is XML (it starts with '<' after a BOM and white space).
 bool looks_like_xml(const std::string& text);
 
-// Throws InputError with file:line:column.
-XmlScene parse_mitsuba_xml(const std::string& text, const std::string& file, const XmlOptions& options);
+// Throws InputError with file:line:column. `file` names the text in messages; relative paths in it
+// resolve against `dir` (those in included files against their own folders).
+XmlScene parse_mitsuba_xml(const std::string& text, const std::string& file, const std::string& dir,
+                           const XmlOptions& options);
 
 }  // namespace caustica
