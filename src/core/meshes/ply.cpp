@@ -286,7 +286,7 @@ class Reader {
         else row[k] = value(p.type, p.real);
       }
       end_row(e, i);
-      const Vec3 v(float(row[size_t(ix[0])]), float(row[size_t(ix[1])]), float(row[size_t(ix[2])]));
+      const Vec3 v{float(row[size_t(ix[0])]), float(row[size_t(ix[1])]), float(row[size_t(ix[2])])};
       if (!is_finite(v)) fail("vertex " + std::to_string(i) + " is not finite");
       mesh.verts.push_back(v);
       if (has_n) normals.emplace_back(float(row[size_t(in[0])]), float(row[size_t(in[1])]), float(row[size_t(in[2])]));
