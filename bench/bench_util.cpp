@@ -30,7 +30,7 @@ const Scene* bunny() {
 
 RayBatch make_rays(const Scene& scene, size_t n, bool shadow, uint64_t seed) {
   Rng rng(seed);
-  const Bounds b = scene.bvh().bounds();
+  const Bounds b = scene.accel().bounds();
   const Vec3 c = b.centre();
   const float r = 0.5f * glm::length(b.extent());
   RayBatch batch;

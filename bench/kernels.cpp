@@ -17,31 +17,42 @@ namespace {
 const Scene* scene_by_index(int i) { return i == 0 ? cornell_spheres() : bunny(); }
 const char* scene_name(int i) { return i == 0 ? "cornell-spheres" : "bunny"; }
 
-// args: scene (0 cornell-spheres, 1 bunny), shadow (0/1), threads
+// The scene's primitives behind one backend (0 our BVH, 1 Embree), built once per scene.
+const Accelerator* backend(int scene, int kind) {
+  static std::unique_ptr<Accelerator> cache[2][2];
+  std::unique_ptr<Accelerator>& a = cache[scene][kind];
+  if (!a) a = make_accelerator(kind == 0 ? AccelKind::Bvh : AccelKind::Embree, scene_by_index(scene)->accel().primitives());
+  return a.get();
+}
+
+// args: scene (0 cornell-spheres, 1 bunny), shadow (0/1), threads, backend (0 bvh, 1 embree):
+// rays through Caustica's ray-casting interface (Accelerator), to compare with BM_EmbreeRays.
 void BM_Rays(benchmark::State& state) {
   const Scene* scene = scene_by_index(int(state.range(0)));
   if (!scene) return state.SkipWithError("bunny.obj missing (install glmark2-data)");
+  if (state.range(3) == 1 && !embree_available()) return state.SkipWithError("built without Embree");
+  const Accelerator* accel = backend(int(state.range(0)), int(state.range(3)));
   const bool shadow = state.range(1) != 0;
   const RayBatch batch = make_rays(*scene, 1 << 20, shadow, 7);
   tbb::global_control c(tbb::global_control::max_allowed_parallelism, size_t(state.range(2)));
   size_t hits = 0;
   for (auto _ : state) {
-    hits = shadow ? count_hits(batch, [&](const Ray& ray) { return scene->occluded(ray); })
+    hits = shadow ? count_hits(batch, [&](const Ray& ray) { return accel->occluded(ray); })
                   : count_hits(batch, [&](const Ray& ray) {
                       Hit hit;
-                      return scene->bvh().intersect(ray, hit);
+                      return accel->intersect(ray, hit);
                     });
   }
   state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(batch.rays.size()));
   state.counters["hit_fraction"] = double(hits) / double(batch.rays.size());
-  state.SetLabel(std::string(scene_name(int(state.range(0)))) + (shadow ? " shadow" : " closest"));
+  state.SetLabel(std::string(scene_name(int(state.range(0)))) + (shadow ? " shadow " : " closest ") + accel->name());
 }
-BENCHMARK(BM_Rays)->ArgsProduct({{0, 1}, {0, 1}, {1, 2}})->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_Rays)->ArgsProduct({{0, 1}, {0, 1}, {1, 2}, {0, 1}})->Unit(benchmark::kMillisecond)->UseRealTime();
 
 void BM_BvhBuild(benchmark::State& state) {
   const Scene* scene = bunny();
   if (!scene) return state.SkipWithError("bunny.obj missing (install glmark2-data)");
-  const std::vector<Primitive> prims = scene->bvh().primitives();
+  const std::vector<Primitive> prims = scene->accel().primitives();
   for (auto _ : state) {
     Bvh bvh;
     bvh.build(prims);

@@ -86,6 +86,8 @@ int run_render(const RenderArgs& args) {
     s << std::fixed << std::setprecision(3);
     s << "scene: " << args.common.scene << " (" << loaded.triangle_count << " triangles, " << loaded.sphere_count
       << " spheres, " << scene.lights.size() << " lights)\n";
+    s << "ray casting: " << scene.accel().name() << " (" << std::setprecision(1)
+      << double(scene.accel().memory_bytes()) / (1 << 20) << " MiB)\n" << std::setprecision(3);
     s << "integrator: " << integrator->name() << "\n" << integrator->describe();
     s << "image: " << output << " (" << rs.width << "x" << rs.height << ")\n";
     s << "threads: " << threads << "\nseed: " << rs.seed << "\n";

@@ -20,6 +20,7 @@ struct SceneOptions {
   std::vector<std::pair<std::string, nlohmann::json>> integrator_overrides;
   bool quiet = false;
   MitsubaOptions mitsuba;  // -D and --ignore-unsupported
+  std::string accel;       // --accel bvh|embree (empty: the scene's)
 };
 
 // Loads the scene (warnings to stderr) and applies the command line's render settings.

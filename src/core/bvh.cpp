@@ -202,3 +202,7 @@ bool Bvh::occluded(const Ray& ray) const {
 }
 
 }  // namespace caustica
+
+namespace caustica {
+size_t Bvh::memory_bytes() const { return nodes_.capacity() * sizeof(Node) + accel_.capacity() * sizeof(Accel); }
+}  // namespace caustica

@@ -2,25 +2,22 @@
 #pragma once
 #include <new>
 #include <vector>
-#include "core/shape.h"
+#include "core/accel.h"
 
 namespace caustica {
 
-struct Hit {
-  float t = kInfinity;
-  uint32_t prim = 0;
-};
-
-class Bvh {
+class Bvh final : public Accelerator {
  public:
   // Takes the primitives and reorders them for traversal.
   void build(std::vector<Primitive> prims);
-  const std::vector<Primitive>& primitives() const { return prims_; }
-  Bounds bounds() const { return nodes_.empty() ? Bounds{} : nodes_[0].bounds; }
+  const std::vector<Primitive>& primitives() const override { return prims_; }
+  Bounds bounds() const override { return nodes_.empty() ? Bounds{} : nodes_[0].bounds; }
   size_t node_count() const { return nodes_.size(); }
+  size_t memory_bytes() const override;
+  const char* name() const override { return "bvh"; }
 
-  bool intersect(const Ray& ray, Hit& hit) const;  // closest hit with t < ray.tmax
-  bool occluded(const Ray& ray) const;             // any hit with t < ray.tmax
+  bool intersect(const Ray& ray, Hit& hit) const override;  // closest hit with t < ray.tmax
+  bool occluded(const Ray& ray) const override;             // any hit with t < ray.tmax
 
  private:
   struct alignas(32) Node {

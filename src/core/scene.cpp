@@ -20,8 +20,8 @@ Vec3 barycentrics(const Primitive& t, const Vec3& p) {
 void Scene::build(std::vector<Primitive> prims) {
   has_masks_ = false;
   for (const auto& m : materials) has_masks_ = has_masks_ || m->has_mask();
-  bvh_.build(std::move(prims));
-  bounds_ = bvh_.bounds();
+  accel_ = make_accelerator(render.accel, std::move(prims));
+  bounds_ = accel_->bounds();
   for (const auto& light : lights) bounds_.extend(light->bounds());
   // Lights at infinity need the scene's bounding sphere before their power is known.
   const Vec3 centre = bounds_.centre();
@@ -35,6 +35,12 @@ void Scene::build(std::vector<Primitive> prims) {
   std::vector<float> powers;
   for (const auto& light : lights) powers.push_back(average(light->power()));
   light_distribution_ = Distribution1D(powers.data(), powers.size());
+}
+
+void Scene::set_accel(AccelKind kind) {
+  if (kind == render.accel) return;
+  render.accel = kind;
+  accel_ = make_accelerator(kind, accel_->primitives());
 }
 
 bool Scene::intersect(const Ray& ray_in, SurfaceHit& hit) const {
@@ -71,15 +77,15 @@ bool Scene::intersect(const Ray& ray_in, SurfaceHit& hit) const {
 }
 
 bool Scene::occluded(const Ray& ray) const {
-  if (!has_masks_) return bvh_.occluded(ray);
+  if (!has_masks_) return accel_->occluded(ray);
   SurfaceHit hit;
   return intersect(ray, hit);
 }
 
 bool Scene::intersect_opaque(const Ray& ray, SurfaceHit& hit) const {
   Hit h;
-  if (!bvh_.intersect(ray, h)) return false;
-  const Primitive& prim = bvh_.primitives()[h.prim];
+  if (!accel_->intersect(ray, h)) return false;
+  const Primitive& prim = accel_->primitives()[h.prim];
   hit.t = h.t;
   hit.p = ray.at(h.t);
   if (prim.kind == ShapeKind::Sphere) {

@@ -20,6 +20,7 @@ struct RenderSettings {
   int spp = 16;
   uint64_t seed = 0;
   int max_depth = 16;
+  AccelKind accel = default_accel();  // the ray-casting backend
 };
 
 // Where a JSON block came from, so that later readers can name file and JSON pointer.
@@ -68,8 +69,11 @@ class Scene {
   std::vector<std::unique_ptr<Light>> lights;
   std::vector<ObjectInfo> objects;
 
-  // Builds the BVH over the primitives and the light-selection distribution (by power).
+  // Builds the ray-casting structure (render.accel) over the primitives and the light-selection
+  // distribution (by power).
   void build(std::vector<Primitive> prims);
+  // Casts rays through another backend from now on (the same primitives).
+  void set_accel(AccelKind kind);
   bool intersect(const Ray& ray, SurfaceHit& hit) const;
   // Shadow rays: any hit before ray.tmax, masked surfaces passed as intersect() passes them.
   bool occluded(const Ray& ray) const;
@@ -80,12 +84,12 @@ class Scene {
   Color escaped(const Vec3& dir) const;
   // The indices of those lights in `lights`.
   const std::vector<size_t>& environment() const { return environment_; }
-  const Bvh& bvh() const { return bvh_; }
+  const Accelerator& accel() const { return *accel_; }
   Bounds bounds() const { return bounds_; }
   float surface_area() const;  // of all geometry
 
  private:
-  Bvh bvh_;
+  std::unique_ptr<Accelerator> accel_ = std::make_unique<Bvh>();
   Distribution1D light_distribution_;
   std::vector<size_t> environment_;  // indices of lights that escaped rays see
   bool has_masks_ = false;           // some material is not fully opaque everywhere

@@ -50,13 +50,21 @@ struct Loader {
   }
 
   void read_render(const json& j, const std::string& p) {
-    r.check_object(j, p, {"width", "height", "spp", "seed", "max_depth", "crop"});
+    r.check_object(j, p, {"width", "height", "spp", "seed", "max_depth", "crop", "accel"});
     RenderSettings& rs = scene().render;
     if (j.contains("width")) rs.width = int(r.integer(j["width"], child(p, "width"), 1, 16384));
     if (j.contains("height")) rs.height = int(r.integer(j["height"], child(p, "height"), 1, 16384));
     if (j.contains("spp")) rs.spp = int(r.integer(j["spp"], child(p, "spp"), 1, 1 << 24));
     if (j.contains("seed")) rs.seed = uint64_t(r.integer(j["seed"], child(p, "seed"), 0, INT64_MAX));
     if (j.contains("max_depth")) rs.max_depth = int(r.integer(j["max_depth"], child(p, "max_depth"), 1, 1024));
+    if (j.contains("accel")) {
+      const std::string a = r.string(j["accel"], child(p, "accel"));
+      if (!parse_accel(a, rs.accel)) r.fail(child(p, "accel"), "unknown accel \"" + a + "\" (known: bvh, embree)");
+      if (rs.accel == AccelKind::Embree && !embree_available()) {
+        r.warn(child(p, "accel"), "this build has no Embree: our BVH casts the rays", out.warnings);
+        rs.accel = AccelKind::Bvh;
+      }
+    }
     if (j.contains("crop")) {
       const json& c = j["crop"];
       const std::string cp = child(p, "crop");
@@ -177,7 +185,8 @@ struct Loader {
       add_triangle(shapes, o, o + e1 + e2, o + e2, p, &a);
     } else if (type == "mesh") {
       r.check_object(j, p, {"type", "name", "material", "flip_normal", "vertices", "indices", "normals", "uvs", "file",
-                            "shape_index", "scale", "translate", "to_world", "face_normals", "default_material"});
+                            "shape_index", "scale", "translate", "to_world", "face_normals", "default_material",
+                            "smooth_normals"});
       if (j.contains("default_material") && j.contains("material")) {
         r.fail(child(p, "default_material"), "give material or default_material, not both");
       }
@@ -345,7 +354,10 @@ struct Loader {
     if (out[0][3] != 0.0f || out[1][3] != 0.0f || out[2][3] != 0.0f || out[3][3] != 1.0f) {
       r.fail(p, "the last row must be [0, 0, 0, 1] (projective transforms are not supported)");
     }
-    if (!(std::abs(glm::determinant(glm::mat3(out))) > 1e-12f)) r.fail(p, "the transform is singular (it flattens the shape)");
+    // Singular relative to the columns' lengths, so that small (and large) scales are fine.
+    const glm::mat3 l(out);
+    const float scale = glm::length(l[0]) * glm::length(l[1]) * glm::length(l[2]);
+    if (!(std::abs(glm::determinant(l)) > 1e-6f * scale)) r.fail(p, "the transform is singular (it flattens the shape)");
     return out;
   }
 
@@ -393,6 +405,10 @@ struct Loader {
     const glm::mat4 to_world = has_matrix ? read_affine(j["to_world"], child(p, "to_world")) : glm::mat4(1.0f);
     const glm::mat3 normal_matrix = glm::transpose(glm::inverse(glm::mat3(to_world)));
     const bool face_normals = j.contains("face_normals") && r.boolean(j["face_normals"], child(p, "face_normals"));
+    if (j.contains("smooth_normals") && r.boolean(j["smooth_normals"], child(p, "smooth_normals"))) {
+      if (face_normals) r.fail(child(p, "smooth_normals"), "smooth_normals and face_normals exclude each other");
+      add_smooth_normals(mesh);
+    }
     for (Vec3& v : verts) {
       v = v * scale + translate;
       if (has_matrix) v = Vec3(to_world * glm::vec4(v, 1.0f));

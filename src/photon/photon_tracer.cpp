@@ -1,5 +1,6 @@
 // Photon tracing in parallel over fixed chunks of photon indices, merged in index order.
 #include "photon/photon_tracer.h"
+#include <algorithm>
 #include <chrono>
 #include <tbb/parallel_for.h>
 #include "core/sampler.h"
@@ -197,19 +198,27 @@ std::vector<Photon> run_map(const Scene& scene, const PhotonPassSettings& s, boo
         counts.push_back(uint32_t(out.size() - before));
       }
     });
-    // Merge in photon-index order and stop at the photon that completes the wanted count.
+    // Merge in photon-index order and stop at the photon that completes the wanted count: first
+    // where each chunk's photons go and how many are kept (a scan of the counts), then the copy
+    // in parallel.
+    std::vector<size_t> at(chunks_in_round, 0), keep(chunks_in_round, 0);
+    size_t total = pending.size();
     for (uint64_t c = 0; c < chunks_in_round && !done; ++c) {
-      size_t offset = 0;
+      at[c] = total;
       for (uint32_t n : chunk_counts[c]) {
-        for (uint32_t k = 0; k < n; ++k) pending.push_back(chunk_out[c][offset + k]);
-        offset += n;
+        keep[c] += n;
         ++emitted;
-        if (pending.size() >= wanted || emitted >= cap) {
+        if (total + keep[c] >= wanted || emitted >= cap) {
           done = true;
           break;
         }
       }
+      total += keep[c];
     }
+    pending.resize(total);
+    tbb::parallel_for(uint64_t(0), chunks_in_round, [&](uint64_t c) {
+      std::copy(chunk_out[c].begin(), chunk_out[c].begin() + long(keep[c]), pending.begin() + long(at[c]));
+    });
     if (s.cancel && s.cancel->load()) break;
     // Size the next round from the storage rate seen so far (deterministic).
     const double rate = emitted > 0 ? double(pending.size()) / double(emitted) : 0.0;
@@ -223,16 +232,17 @@ std::vector<Photon> run_map(const Scene& scene, const PhotonPassSettings& s, boo
                        (caustic ? "the specular objects" : "diffuse surfaces"));
   }
   emitted_out = emitted;
-  result.reserve(pending.size());
   // Records hold flux / flux_scale, near 1, where half floats are most precise.
   double mean = 0;
   for (const PendingPhoton& p : pending) mean += max_component(p.flux);
   mean = pending.empty() ? 1.0 : mean / double(pending.size());
   flux_scale = float(mean / double(std::max<uint64_t>(emitted, 1)));
   const float inv = mean > 0 ? float(1.0 / mean) : 0.0f;
-  for (const PendingPhoton& p : pending) {
-    result.push_back(Photon::make(p.position, p.flux * inv, p.incoming, p.normal, p.bounces));
-  }
+  result.resize(pending.size());
+  tbb::parallel_for(size_t(0), pending.size(), [&](size_t i) {
+    const PendingPhoton& p = pending[i];
+    result[i] = Photon::make(p.position, p.flux * inv, p.incoming, p.normal, p.bounces);
+  });
   return result;
 }
 

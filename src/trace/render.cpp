@@ -1,6 +1,7 @@
 // Render loop. Pixel (x, y), sample s seeds its own random stream from hash(pixel, s, seed),
 // so neither tile order nor thread count changes the result; each pass is summed in order.
 #include "trace/render.h"
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <tbb/blocked_range.h>
@@ -28,10 +29,9 @@ Image render_image(const Scene& scene, const Integrator& integrator, const Rende
   const int tile_count = tiles_x * tiles_y;
   const bool timed = options.time_limit > 0;
   std::vector<glm::dvec3> sum(size_t(w) * h, glm::dvec3(0.0));
-  Image pass_image(w, h);
   const bool want_aov = options.aov && aovs;
   constexpr int kA = Sampler::kAovCount;
-  std::vector<float> aov_pass(want_aov ? size_t(w) * h * kA : 0), aov_sum(aov_pass.size(), 0.0f);
+  std::vector<float> aov_sum(want_aov ? size_t(w) * h * kA : 0, 0.0f);
   std::atomic<uint64_t> rays{0}, bad{0};
   std::atomic<int> tiles_done{0};
   const auto start = std::chrono::steady_clock::now();
@@ -42,74 +42,98 @@ Image render_image(const Scene& scene, const Integrator& integrator, const Rende
 
   const int crop_x = scene.camera.crop_x(), crop_y = scene.camera.crop_y();
   const uint64_t film_w = uint64_t(scene.camera.film_width());
-  for (int pass = 0;; ++pass) {
-    if (!timed && pass >= options.spp) break;
-    if (timed && pass > 0) {
-      const double t = elapsed();
-      if (t + t / pass > options.time_limit) break;  // the next pass would overrun the budget
-    }
-    tbb::parallel_for(tbb::blocked_range<int>(0, tile_count), [&](const tbb::blocked_range<int>& range) {
-      for (int tile = range.begin(); tile != range.end(); ++tile) {
-        if (cancelled()) return;
-        const int x0 = (tile % tiles_x) * ts, y0 = (tile / tiles_x) * ts;
-        uint64_t tile_rays = 0, tile_bad = 0;
-        for (int y = y0; y < std::min(y0 + ts, h); ++y) {
-          for (int x = x0; x < std::min(x0 + ts, w); ++x) {
-            const uint64_t pixel = uint64_t(y) * w + x;
-            // Random streams follow the film pixel, so that a crop window renders the same
-            // pixels as the whole film.
-            const uint64_t film_pixel = uint64_t(y + crop_y) * film_w + uint64_t(x + crop_x);
-            Sampler sampler(hash_seed(film_pixel, uint64_t(pass), options.seed));
-            if (want_aov) {
-              sampler.aov = &aov_pass[pixel * kA];
-              std::fill(sampler.aov, sampler.aov + kA, 0.0f);
-            }
-            const Vec2 jitter = pixel_jitter(film_pixel, uint64_t(pass), options.seed);
-            const Ray ray = scene.camera.generate_ray(x, y, jitter);
-            Color L = integrator.Li(ray, scene, sampler);
-            if (!is_finite(L) || L.r < 0 || L.g < 0 || L.b < 0) {
-              L = Color(0.0f);
-              ++tile_bad;
-            }
-            pass_image.at(x, y) = L;
-            tile_rays += sampler.rays;
+  // Passes [p0, p1) of one tile, added to each pixel's sum in pass order: the sums are the same
+  // whether a pass covers the image before the next begins or a tile runs all its passes.
+  std::vector<int> pixel_passes(size_t(w) * h, 0);
+  auto render_tile = [&](int tile, int p0, int p1) {
+    const int x0 = (tile % tiles_x) * ts, y0 = (tile / tiles_x) * ts;
+    uint64_t tile_rays = 0, tile_bad = 0;
+    for (int pass = p0; pass < p1; ++pass) {
+      if (cancelled()) break;
+      for (int y = y0; y < std::min(y0 + ts, h); ++y) {
+        for (int x = x0; x < std::min(x0 + ts, w); ++x) {
+          const uint64_t pixel = uint64_t(y) * w + x;
+          // Random streams follow the film pixel, so that a crop window renders the same
+          // pixels as the whole film.
+          const uint64_t film_pixel = uint64_t(y + crop_y) * film_w + uint64_t(x + crop_x);
+          Sampler sampler(hash_seed(film_pixel, uint64_t(pass), options.seed));
+          float aov[kA] = {};
+          if (want_aov) sampler.aov = aov;
+          const Vec2 jitter = pixel_jitter(film_pixel, uint64_t(pass), options.seed);
+          const Ray ray = scene.camera.generate_ray(x, y, jitter);
+          Color L = integrator.Li(ray, scene, sampler);
+          if (!is_finite(L) || L.r < 0 || L.g < 0 || L.b < 0) {
+            L = Color(0.0f);
+            ++tile_bad;
           }
+          sum[pixel] += glm::dvec3(L);
+          for (int a = 0; a < (want_aov ? kA : 0); ++a) aov_sum[pixel * kA + size_t(a)] += aov[a];
+          ++pixel_passes[pixel];
+          tile_rays += sampler.rays;
         }
-        rays += tile_rays;
-        bad += tile_bad;
-        const int done = ++tiles_done;
-        if (!timed) progress.set(done);
       }
-    });
-    if (cancelled()) {
-      stats.interrupted = true;
-      break;
+      const int done = ++tiles_done;
+      if (!timed) progress.set(done);
     }
-    for (size_t i = 0; i < sum.size(); ++i) sum[i] += glm::dvec3(pass_image.pixels[i]);
-    for (size_t i = 0; i < aov_sum.size(); ++i) aov_sum[i] += aov_pass[i];
-    stats.passes = pass + 1;
+    rays += tile_rays;
+    bad += tile_bad;
+  };
+  auto finish_pass = [&](int passes) {
+    stats.passes = passes;
     if (timed) progress.set(std::min(elapsed(), options.time_limit));
     if (options.on_pass) {
       Image mean(w, h);
-      for (size_t i = 0; i < sum.size(); ++i) mean.pixels[i] = Color(sum[i] / double(stats.passes));
-      options.on_pass(stats.passes, elapsed(), mean);
+      for (size_t i = 0; i < sum.size(); ++i) mean.pixels[i] = Color(sum[i] / double(passes));
+      options.on_pass(passes, elapsed(), mean);
+    }
+  };
+  if (!timed && !options.on_pass) {
+    // A fixed pass count: each tile runs a group of passes, with a barrier only between groups
+    // (an interrupted render keeps every finished pass; all tiles have started the group).
+    constexpr int kGroup = 8;
+    for (int p0 = 0; p0 < options.spp && !cancelled(); p0 += kGroup) {
+      const int p1 = std::min(options.spp, p0 + kGroup);
+      tbb::parallel_for(tbb::blocked_range<int>(0, tile_count), [&](const tbb::blocked_range<int>& range) {
+        for (int tile = range.begin(); tile != range.end(); ++tile) render_tile(tile, p0, p1);
+      });
+    }
+    stats.interrupted = cancelled();
+    stats.passes = *std::min_element(pixel_passes.begin(), pixel_passes.end());
+  } else {
+    for (int pass = 0;; ++pass) {
+      if (!timed && pass >= options.spp) break;
+      if (timed && pass > 0) {
+        const double t = elapsed();
+        if (t + t / pass > options.time_limit) break;  // the next pass would overrun the budget
+      }
+      tbb::parallel_for(tbb::blocked_range<int>(0, tile_count), [&](const tbb::blocked_range<int>& range) {
+        for (int tile = range.begin(); tile != range.end(); ++tile) render_tile(tile, pass, pass + 1);
+      });
+      if (cancelled()) {
+        stats.interrupted = true;
+        // A pass cut short: the pixels it reached keep it (each pixel is divided by its own count).
+        stats.passes = pass;
+        break;
+      }
+      finish_pass(pass + 1);
     }
   }
   progress.finish();
   stats.seconds = elapsed();
   stats.rays = rays;
   stats.bad_samples = bad;
-  stats.samples = uint64_t(stats.passes) * w * h;
+  stats.samples = 0;
+  // Each pixel is the mean of its own passes (after an interruption, some pixels have one more).
   Image image(w, h);
-  if (stats.passes > 0) {
-    for (size_t i = 0; i < sum.size(); ++i) image.pixels[i] = Color(sum[i] / double(stats.passes));
-  }
-  if (want_aov) {
-    aovs->assign(2, Image(w, h));
-    const float inv = stats.passes > 0 ? 1.0f / float(stats.passes) : 0.0f;
-    for (size_t i = 0; i < size_t(w) * h; ++i) {
-      (*aovs)[0].pixels[i] = Color(aov_sum[i * kA], aov_sum[i * kA + 1], 0.0f) * inv;
-      (*aovs)[1].pixels[i] = Color(aov_sum[i * kA + 2], aov_sum[i * kA + 3], 0.0f) * inv;
+  if (want_aov) aovs->assign(2, Image(w, h));
+  for (size_t i = 0; i < sum.size(); ++i) {
+    stats.samples += uint64_t(pixel_passes[i]);
+    if (pixel_passes[i] == 0) continue;
+    const double inv = 1.0 / double(pixel_passes[i]);
+    image.pixels[i] = Color(sum[i] * inv);
+    if (want_aov) {
+      (*aovs)[0].pixels[i] = Color(aov_sum[i * kA], aov_sum[i * kA + 1], 0.0f) * float(inv);
+      (*aovs)[1].pixels[i] = Color(aov_sum[i * kA + 2], aov_sum[i * kA + 3], 0.0f) * float(inv);
     }
   }
   return image;

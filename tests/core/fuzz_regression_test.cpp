@@ -89,7 +89,7 @@ TEST_CASE("fuzz regressions: large generated inputs", "[core][fuzz]") {
     LoadedScene loaded;
     REQUIRE_NOTHROW(loaded = parse_scene(kHead + sphere_at("3e38") + sphere_at("-3e38") + sphere_at("2") + "]}",
                                          "fuzz.json", kNoMeshDir));
-    CHECK(loaded.scene->bvh().primitives().size() == 4);
+    CHECK(loaded.scene->accel().primitives().size() == 4);
   }
   SECTION("a 16384 x 16384 render loads at once: the loader allocates no image") {
     const std::string text = kHead + R"(], "render": {"width": 16384, "height": 16384, "spp": 16777216}})";

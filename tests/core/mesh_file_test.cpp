@@ -485,3 +485,43 @@ TEST_CASE("mesh files: PLY errors name the line or the element", "[mesh]") {
              Contains("unknown type \"quad\""));
   CHECK_THAT(error_of([&] { parse_ply("solid cube\n", "s.ply"); }), Contains("not a PLY file"));
 }
+
+TEST_CASE("mesh files: counts larger than the data are refused before anything is allocated", "[mesh]") {
+  // A .serialized stream of a few bytes declaring 2^31 vertices.
+  SerializedShape tiny;
+  tiny.name = "huge";
+  const std::string blob = serialized_blob(serialized_raw(tiny, uint64_t(1) << 31, 1));
+  CHECK(error_of([&] { parse_serialized(blob, "h.serialized", 0); }) == "h.serialized: truncated while reading the vertex positions");
+  SerializedShape one;
+  one.pos = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+  one.name = "t";
+  CHECK(error_of([&] { parse_serialized(serialized_blob(serialized_raw(one, 3, uint64_t(1) << 31)), "t.serialized", 0); }) ==
+        "t.serialized: truncated while reading the triangle indices");
+  // An ASCII PLY declaring 2^31 vertices and holding one.
+  const std::string ply = "ply\nformat ascii 1.0\nelement vertex 2147483648\nproperty float x\nproperty float y\n"
+                          "property float z\nend_header\n0 0 0\n";
+  CHECK(error_of([&] { parse_ply(ply, "a.ply"); }) == "a.ply:9: the file ends before vertex 1 (truncated)");
+  // A list count too large for any integer.
+  const std::string list = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+                           "element face 1\nproperty list uint int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n"
+                           "99999999999999999999 0 1 2\n";
+  CHECK_THAT(error_of([&] { parse_ply(list, "l.ply"); }), Contains("items (0 to 10^6 allowed)"));
+}
+
+TEST_CASE("mesh files: smooth normals average the faces around a vertex by area", "[mesh]") {
+  // Two triangles folded at 90 degrees along the x axis: the shared vertices get the normalised
+  // sum of the two face normals weighted by twice their areas.
+  MeshData m;
+  m.verts = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 2)};
+  m.tris = {glm::ivec3(0, 1, 2), glm::ivec3(0, 3, 1)};
+  add_smooth_normals(m);
+  REQUIRE(m.attributes.size() == 2);
+  // Face 0: cross((1,0,0),(0,1,0)) = (0,0,1), area 0.5; face 1: cross((0,0,2),(1,0,0)) = (0,2,0), area 1.
+  const Vec3 shared = glm::normalize(Vec3(0, 2, 1));
+  CHECK(glm::length(m.attributes[0].n[0] - shared) < 1e-6f);
+  CHECK(glm::length(m.attributes[0].n[1] - shared) < 1e-6f);
+  CHECK(glm::length(m.attributes[0].n[2] - Vec3(0, 0, 1)) < 1e-6f);
+  CHECK(glm::length(m.attributes[1].n[1] - Vec3(0, 1, 0)) < 1e-6f);
+  CHECK(m.attributes[0].has_normals);
+  CHECK_FALSE(m.attributes[0].has_uvs);
+}

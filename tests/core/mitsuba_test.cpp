@@ -788,3 +788,46 @@ TEST_CASE("mitsuba: analytic shapes have their areas", "[mitsuba]") {
   CHECK_THAT(error_of([] { translate(xml_scene(R"(<shape type="cylinder"><point name="p1" value="0, 0, 0"/></shape>)")); }),
              Contains("the cylinder has no extent"));
 }
+
+TEST_CASE("mitsuba: reference cycles, self-including files and exponential sharing are refused", "[mitsuba]") {
+  const std::string cycle = xml_scene(
+      "<bsdf type=\"twosided\" id=\"a\">\n  <bsdf type=\"twosided\" id=\"b\">\n    <ref id=\"a\"/>\n  </bsdf>\n</bsdf>");
+  CHECK(error_of([&] { translate(cycle); }) == "scene.xml:4:6: <ref id=\"a\">: this reference closes a cycle (an object inside itself)");
+  test::TempDir dir;
+  dir.write("self.xml", xml_scene("<include filename=\"self.xml\"/>"));
+  CHECK_THAT(error_of([&] { load_scene(dir.file("self.xml")); }), Contains("includes itself"));
+  // Each level holds the one before twice: 2^20 BSDFs if expanded.
+  std::string body = "<bsdf type=\"diffuse\" id=\"l0\"/>\n";
+  for (int i = 1; i <= 20; ++i) {
+    body += "<bsdf type=\"twosided\" id=\"l" + std::to_string(i) + "\"><ref id=\"l" + std::to_string(i - 1) +
+            "\"/><ref id=\"l" + std::to_string(i - 1) + "\"/></bsdf>\n";
+  }
+  CHECK_THAT(error_of([&] { translate(xml_scene(body)); }), Contains("expands to more than 100000"));
+}
+
+TEST_CASE("mitsuba: 0.6 uoffset and uscale give uv * scale + offset", "[mitsuba]") {
+  const json doc = translate(xml_scene(R"(<bsdf type="diffuse" id="m"><texture type="checkerboard" name="reflectance">
+    <float name="uscale" value="2"/><float name="uoffset" value="0.5"/><float name="vscale" value="3"/>
+  </texture></bsdf>)", "0.6.0"));
+  const json& to_uv = doc["materials"]["m"]["reflectance"]["to_uv"];
+  CHECK(to_uv == json::array({json::array({2.0, 0.0, 0.5}), json::array({0.0, 3.0, 0.0})}));
+}
+
+TEST_CASE("mitsuba: a mirroring to_world keeps a rectangle's normal, and mesh files get smooth normals", "[mitsuba]") {
+  const json doc = translate(xml_scene(R"(
+    <shape type="rectangle"><transform name="to_world"><scale x="-1"/></transform></shape>
+    <shape type="rectangle"><transform name="to_world"><scale z="-1"/></transform></shape>
+    <shape type="rectangle"/>)"));
+  // scale x = -1 reverses the winding (so flip it back: the normal stays +z, as the inverse
+  // transpose leaves it); scale z = -1 keeps the winding (+z) where Mitsuba's normal is -z.
+  CHECK(doc["objects"][0]["flip_normal"] == true);
+  CHECK(doc["objects"][1]["flip_normal"] == true);
+  CHECK_FALSE(doc["objects"][2].contains("flip_normal"));
+  test::TempDir dir;
+  dir.write("m.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  const std::string shapes = xml_scene(R"(<shape type="obj"><string name="filename" value="m.obj"/></shape>
+    <shape type="obj"><string name="filename" value="m.obj"/><boolean name="face_normals" value="true"/></shape>)");
+  const json files = read_mitsuba(shapes, "scene.xml", dir.path().string(), {}).doc;
+  CHECK(files["objects"][0]["smooth_normals"] == true);
+  CHECK_FALSE(files["objects"][1].contains("smooth_normals"));
+}

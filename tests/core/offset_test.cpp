@@ -16,7 +16,7 @@ TEST_CASE("offset: grazing rays leaving a surface do not hit it again", "[core][
                   {"type": "sphere", "center": [0, 0, 0], "radius": )" + std::to_string(0.5f * scale) + R"(, "material": "m"}]})";
     LoadedScene loaded = parse_scene(text, "offset.json", ".");
     const Scene& scene = *loaded.scene;
-    const auto& prims = scene.bvh().primitives();
+    const auto& prims = scene.accel().primitives();
     Rng rng(17);
     int self_hits = 0, tries = 0;
     for (const Primitive& prim : prims) {

@@ -48,7 +48,7 @@ TEST_CASE("scene loader: a minimal valid scene", "[core][scene_loader]") {
   CHECK(loaded.sphere_count == 1);
   CHECK(loaded.triangle_count == 2 + 1 + 2);  // quad -> 2, triangle, mesh -> 2
   CHECK(loaded.warnings.empty());
-  CHECK(scene.bvh().primitives().size() == 6);
+  CHECK(scene.accel().primitives().size() == 6);
   CHECK(scene.materials.size() == 3);
   CHECK(scene.render.width == 8);
   CHECK(scene.render.spp == 1);
@@ -63,7 +63,7 @@ TEST_CASE("scene loader: a minimal valid scene", "[core][scene_loader]") {
   CHECK(area->power().b == Approx(kPi * 6.0f * 3.0f));
   // Both quad triangles point at the light, the others at none.
   int light_prims = 0;
-  for (const Primitive& p : scene.bvh().primitives()) light_prims += p.light == 0;
+  for (const Primitive& p : scene.accel().primitives()) light_prims += p.light == 0;
   CHECK(light_prims == 2);
   // The camera looks at the origin: the ray through the image centre hits the unit sphere at t = 4.
   SurfaceHit hit;
@@ -197,7 +197,7 @@ TEST_CASE("scene loader: a degenerate triangle is a warning, not an error", "[co
   REQUIRE_NOTHROW(loaded = parse(scene_text(objects)));
   CHECK(loaded.triangle_count == 0);
   CHECK(loaded.sphere_count == 1);
-  CHECK(loaded.scene->bvh().primitives().size() == 1);
+  CHECK(loaded.scene->accel().primitives().size() == 1);
   bool named = false;
   for (const std::string& w : loaded.warnings) named = named || (w.find("/objects/1") != std::string::npos && w.find("degenerate") != std::string::npos);
   CHECK(named);
@@ -220,7 +220,7 @@ TEST_CASE("scene loader: mesh files are resolved from the scene folder", "[core]
   const std::string path = dir.write("scene.json", found);
   LoadedScene loaded = load_scene(path);
   CHECK(loaded.triangle_count == 2);
-  const Bounds b = loaded.scene->bvh().bounds();
+  const Bounds b = loaded.scene->accel().bounds();
   CHECK(b.lo == Vec3(0, 0, 1));
   CHECK(b.hi == Vec3(2, 2, 1));
 }

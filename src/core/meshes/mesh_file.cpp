@@ -24,6 +24,31 @@ void set_vertex_attributes(MeshData& mesh, const std::vector<Vec3>& normals, con
   }
 }
 
+void add_smooth_normals(MeshData& mesh) {
+  std::vector<Vec3> sum(mesh.verts.size(), Vec3(0.0f));
+  for (const glm::ivec3& t : mesh.tris) {
+    const Vec3 n = glm::cross(mesh.verts[size_t(t[1])] - mesh.verts[size_t(t[0])], mesh.verts[size_t(t[2])] - mesh.verts[size_t(t[0])]);
+    if (!is_finite(n)) continue;
+    for (int k = 0; k < 3; ++k) sum[size_t(t[k])] += n;
+  }
+  if (mesh.attributes.empty()) mesh.attributes.resize(mesh.tris.size());
+  for (size_t i = 0; i < mesh.tris.size(); ++i) {
+    TriangleAttributes& a = mesh.attributes[i];
+    if (a.has_normals) continue;
+    bool ok = true;
+    Vec3 n[3];
+    for (int k = 0; k < 3; ++k) {
+      const Vec3& v = sum[size_t(mesh.tris[i][k])];
+      const float len = glm::length(v);
+      ok = ok && len > 0.0f && std::isfinite(len);
+      n[k] = ok ? v / len : Vec3(0.0f);
+    }
+    if (!ok) continue;
+    for (int k = 0; k < 3; ++k) a.n[k] = n[k];
+    a.has_normals = true;
+  }
+}
+
 MeshData read_mesh_file(const std::string& path, int shape_index) {
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) throw InputError("mesh file not found: tried " + path);

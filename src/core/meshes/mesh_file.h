@@ -31,6 +31,10 @@ struct MeshData {
 // vertex); a triangle with a non-finite normal or UV goes without it.
 void set_vertex_attributes(MeshData& mesh, const std::vector<Vec3>& normals, const std::vector<Vec2>& uvs);
 
+// Area-weighted vertex normals for the triangles that have none (as Mitsuba does for a mesh
+// without normals, unless face_normals); a vertex whose normals cancel leaves its triangles flat.
+void add_smooth_normals(MeshData& mesh);
+
 // Reads by the extension (.obj, .ply, .serialized).
 // `shape_index` picks one shape of a .serialized file holding several.
 MeshData read_mesh_file(const std::string& path, int shape_index = 0);

@@ -234,7 +234,7 @@ class Reader {
 
   uint64_t list_count(const Property& p) {
     const double n = value(p.count_signed ? -p.count_type : p.count_type, false);
-    if (!(n >= 0.0) || n > 1e6) fail("a list of " + std::to_string(int64_t(n)) + " items");
+    if (!(n >= 0.0) || n > 1e6) fail("a list of " + std::to_string(n) + " items (0 to 10^6 allowed)");
     return uint64_t(n);
   }
 
@@ -276,7 +276,8 @@ class Reader {
     if (ix[0] < 0 || ix[1] < 0 || ix[2] < 0) fail("the vertex element lacks x, y or z");
     const bool has_n = in[0] >= 0 && in[1] >= 0 && in[2] >= 0, has_uv = iuv[0] >= 0 && iuv[1] >= 0;
     check_room(e);
-    mesh.verts.reserve(e.count);
+    // An ASCII vertex takes at least 6 bytes ("0 0 0\n"): no more can be in the file.
+    mesh.verts.reserve(std::min<uint64_t>(e.count, bytes_.size() / 6 + 1));
     std::vector<double> row(e.props.size());
     for (uint64_t i = 0; i < e.count; ++i) {
       begin_row(e, i);

@@ -45,9 +45,9 @@ std::string inflate_from(const std::string& bytes, size_t at, const std::string&
     rc = inflate(&zs, Z_NO_FLUSH);
     out.append(buffer, sizeof(buffer) - zs.avail_out);
     if (rc == Z_BUF_ERROR && zs.avail_in == 0) break;
-    if (out.size() > (size_t(1) << 34)) {
+    if (out.size() > (size_t(1) << 32)) {
       inflateEnd(&zs);
-      throw InputError(name + ": the mesh inflates to more than 16 GiB");
+      throw InputError(name + ": the mesh inflates to more than 4 GiB");
     }
   }
   inflateEnd(&zs);
@@ -134,6 +134,9 @@ MeshData parse_serialized(const std::string& bytes, const std::string& name, int
   const bool dbl = (flags & kDoublePrecision) != 0;
   if (nv == 0 || nt == 0) throw InputError(name + ": shape " + std::to_string(shape_index) + " has no triangles");
   if (nv > (uint64_t(1) << 31) || nt > (uint64_t(1) << 31)) throw InputError(name + ": more than 2^31 vertices or triangles");
+  // The stream must hold the positions and indices it declares before anything is allocated.
+  in.need(size_t(nv) * 3 * (dbl ? 8 : 4), "vertex positions");
+  if (nt > (data.size() / 12)) throw InputError(name + ": truncated while reading the triangle indices");
   MeshData mesh;
   std::vector<float> pos(3 * nv), normals, uvs;
   in.reals(nv, 3, dbl, pos.data(), "vertex positions");

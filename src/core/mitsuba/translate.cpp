@@ -124,6 +124,8 @@ class Translator {
   TranslatedScene out_;
   std::map<const XmlObject*, std::string> materials_;
   int anonymous_ = 0;
+  int expanded_ = 0;
+  static constexpr int kMaxExpanded = 100000;
 
   void note(const std::string& pointer, const std::string& where) { (*out_.sources)[pointer] = where; }
   void warn(const std::string& where, const std::string& message) { out_.warnings.push_back(where + ": " + message); }
@@ -263,7 +265,10 @@ class Translator {
       fov = 2.0 * std::atan(std::sqrt(36.0 * 36.0 + 24.0 * 24.0) / (2.0 * mm)) * 180.0 / 3.14159265358979323846;
       axis = "diagonal";
     }
-    if (const XmlProperty* a = props.get("fov_axis")) axis = string(*a);
+    // With a focal length Mitsuba 3 measures the diagonal, whatever fov_axis says.
+    if (const XmlProperty* a = props.get("fov_axis")) {
+      if (!o.prop("focal_length") || o.prop("fov")) axis = string(*a);
+    }
     cam["fov"] = fov;
     cam["fov_axis"] = axis;
     note("/camera", o.where);
@@ -479,7 +484,16 @@ class Translator {
 
   json default_bsdf() { return {{"type", "diffuse"}, {"reflectance", 0.5}}; }
 
+  // Shared references can multiply: each translated BSDF, texture or shape counts.
+  void count_expansion(const XmlObject& o) {
+    if (++expanded_ > kMaxExpanded) {
+      throw InputError(o.where + ": the scene expands to more than " + std::to_string(kMaxExpanded) +
+                       " BSDFs, textures and shapes (shared references nested too deeply?)");
+    }
+  }
+
   json bsdf(const XmlObject& o, const std::string& p) {
+    count_expansion(o);
     note(p, o.where);
     if (!kBsdfs.count(o.type)) {
       const XmlObject* inner = nullptr;
@@ -560,6 +574,7 @@ class Translator {
   }
 
   json texture(const XmlObject& o, const std::string& p) {
+    count_expansion(o);
     note(p, o.where);
     if (!kTextures.count(o.type)) {
       unsupported(o, "texture", kTextures, "replaced by a constant 0.5");
@@ -577,7 +592,7 @@ class Translator {
         to_uv = transform(prop);
         has_to_uv = true;
       } else if (n == "uoffset" || n == "voffset" || n == "uscale" || n == "vscale") {
-        // Mitsuba 0.6: translate by the offsets, then scale.
+        // Mitsuba 0.6: uv * scale + offset.
         (n[1] == 'o' ? offset : scale)[n[0] == 'u' ? 0 : 1] = number(prop);
         has_to_uv = true;
       } else if (n == "color0" || n == "color1") {
@@ -592,7 +607,7 @@ class Translator {
       t[3] = glm::dvec4(offset[0], offset[1], 0.0, 1.0);
       glm::dmat4 s(1.0);
       s[0][0] = scale[0], s[1][1] = scale[1];
-      const glm::dmat4 m = to_uv * s * t;
+      const glm::dmat4 m = to_uv * t * s;
       j["to_uv"] = {{m[0][0], m[1][0], m[3][0]}, {m[0][1], m[1][1], m[3][1]}};
     }
     for (const XmlChild& c : o.children) bad_child(o, c);
@@ -601,6 +616,7 @@ class Translator {
 
   // ---------------------------------------------------------------- shapes
   void shape(const XmlObject& o, const glm::dmat4& parent) {
+    count_expansion(o);
     if (!kShapes.count(o.type)) {
       unsupported(o, "shape", kShapes, "skipped");
       return;
@@ -744,6 +760,16 @@ class Translator {
         note(p + "/face_normals", fn->where);
       }
       const glm::dmat4 full = m * local;
+      // Mitsuba's rectangle, disk and cylinder carry their normal through the inverse transpose,
+      // which a mirroring transform does not flip, while the triangles' winding does.
+      if ((o.type == "rectangle" || o.type == "disk" || o.type == "cylinder") && glm::determinant(glm::dmat3(full)) < 0.0) {
+        obj["flip_normal"] = !(obj.contains("flip_normal") && obj["flip_normal"].get<bool>());
+      }
+      // Mitsuba computes smooth vertex normals for a mesh file without them (unless face_normals).
+      if ((o.type == "obj" || o.type == "ply" || o.type == "serialized") &&
+          !(obj.contains("face_normals") && obj["face_normals"].get<bool>())) {
+        obj["smooth_normals"] = true;
+      }
       if (full != glm::dmat4(1.0)) {
         obj["to_world"] = rows(full);
         if (const XmlProperty* t = o.prop("to_world")) note(p + "/to_world", t->where);

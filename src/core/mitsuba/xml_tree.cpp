@@ -31,6 +31,7 @@ namespace {
 
 constexpr int kMaxIncludeDepth = 16;
 constexpr int kMaxNesting = 64;
+constexpr int kMaxIncludes = 1000;
 
 // One file of the scene (the main file or an include) and what is needed to place errors in it.
 struct Source {
@@ -109,7 +110,8 @@ class Parser {
   std::map<std::string, std::string> params_;
   std::map<std::string, XmlObject*> ids_;
   std::vector<PendingRef> refs_;
-  int include_depth_ = 0;
+  int include_depth_ = 0, includes_ = 0;
+  std::vector<std::string> include_stack_;  // canonical paths of the files being read
 
   [[noreturn]] void fail(const Source& src, const pugi::xml_node& node, const std::string& message) const {
     throw InputError(where(src, node) + ": " + message);
@@ -318,6 +320,12 @@ class Parser {
     if (include_depth_ >= kMaxIncludeDepth) fail(src, node, "includes nested deeper than " + std::to_string(kMaxIncludeDepth) + " (a cycle?)");
     const std::string path = resolve(src, name);
     if (path.empty()) fail(src, node, "included file not found: " + name);
+    std::error_code canon_ec;
+    const std::string canonical = fs::weakly_canonical(path, canon_ec).string();
+    if (std::find(include_stack_.begin(), include_stack_.end(), canonical) != include_stack_.end()) {
+      fail(src, node, "the file " + path + " includes itself");
+    }
+    if (++includes_ > kMaxIncludes) fail(src, node, "more than " + std::to_string(kMaxIncludes) + " includes in all");
     std::error_code ec;
     // Only regular files: a FIFO or a device would block or never end.
     if (!fs::is_regular_file(path, ec)) fail(src, node, "the included path is not a regular file: " + path);
@@ -329,14 +337,15 @@ class Parser {
     const pugi::xml_node root = inc.doc.document_element();
     if (!root) throw InputError(path + ": the XML document has no element");
     ++include_depth_;
+    include_stack_.push_back(canonical);
     if (std::string(root.name()) == "scene") {
       read_children(inc, root, obj, depth, upgrade(inc, root));
     } else {
       // A single object: as if written here (with the <include>'s name, if any).
-      pugi::xml_document wrapper;
       read_children(inc, root.parent(), obj, depth, false);
       if (node.attribute("name") && !obj.children.empty()) obj.children.back().name = attr(src, node, "name");
     }
+    include_stack_.pop_back();
     --include_depth_;
   }
 
@@ -575,6 +584,38 @@ class Parser {
       }
       c.object = it->second;
       if (c.object == r.owner) throw InputError(c.where + ": an object cannot refer to itself");
+    }
+    check_cycles();
+  }
+
+  // References must not form a cycle (a twosided BSDF inside itself, a group holding its own
+  // instance): the translation would never end.
+  void check_cycles() const {
+    enum State : char { New, Open, Done };
+    std::map<const XmlObject*, State> state;
+    struct Frame {
+      const XmlObject* o;
+      size_t next;
+    };
+    for (const auto& start : scene_.objects) {
+      if (state[start.get()] != New) continue;
+      std::vector<Frame> stack = {{start.get(), 0}};
+      state[start.get()] = Open;
+      while (!stack.empty()) {
+        Frame& f = stack.back();
+        if (f.next == f.o->children.size()) {
+          state[f.o] = Done;
+          stack.pop_back();
+          continue;
+        }
+        const XmlChild& c = f.o->children[f.next++];
+        State& s = state[c.object];
+        if (s == Open) throw InputError(c.where + ": this reference closes a cycle (an object inside itself)");
+        if (s == New) {
+          s = Open;
+          stack.push_back({c.object, 0});
+        }
+      }
     }
   }
 };

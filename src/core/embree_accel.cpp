@@ -1,0 +1,138 @@
+// Embree 3 backend; see embree_accel.h.
+#ifdef CAUSTICA_EMBREE
+#include "core/embree_accel.h"
+#include <cmath>
+#include "core/json_reader.h"
+
+namespace caustica {
+namespace {
+
+// User geometry: the spheres, in Embree's primID order.
+void sphere_bounds(const RTCBoundsFunctionArguments* args) {
+  const Primitive& p = static_cast<const Primitive*>(args->geometryUserPtr)[args->primID];
+  const Bounds b = p.bounds();
+  args->bounds_o->lower_x = b.lo.x, args->bounds_o->lower_y = b.lo.y, args->bounds_o->lower_z = b.lo.z;
+  args->bounds_o->upper_x = b.hi.x, args->bounds_o->upper_y = b.hi.y, args->bounds_o->upper_z = b.hi.z;
+}
+
+Ray to_ray(const RTCRay& r) {
+  return Ray{Vec3(r.org_x, r.org_y, r.org_z), Vec3(r.dir_x, r.dir_y, r.dir_z), r.tfar};
+}
+
+void sphere_intersect(const RTCIntersectFunctionNArguments* args) {
+  // rtcIntersect1 only: N is 1.
+  if (!args->valid[0]) return;
+  RTCRayHit* rh = reinterpret_cast<RTCRayHit*>(args->rayhit);
+  const Primitive& p = static_cast<const Primitive*>(args->geometryUserPtr)[args->primID];
+  float t;
+  if (!intersect_sphere(to_ray(rh->ray), p.p0, p.radius(), rh->ray.tfar, t) || !(t > rh->ray.tnear)) return;
+  rh->ray.tfar = t;
+  rh->hit.geomID = args->geomID;
+  rh->hit.primID = args->primID;
+  rh->hit.instID[0] = args->context->instID[0];
+}
+
+void sphere_occluded(const RTCOccludedFunctionNArguments* args) {
+  if (!args->valid[0]) return;
+  RTCRay* r = reinterpret_cast<RTCRay*>(args->ray);
+  const Primitive& p = static_cast<const Primitive*>(args->geometryUserPtr)[args->primID];
+  float t;
+  if (intersect_sphere(to_ray(*r), p.p0, p.radius(), r->tfar, t) && t > r->tnear) r->tfar = -INFINITY;
+}
+
+bool track_memory(void* user, ssize_t bytes, bool) {
+  static_cast<std::atomic<int64_t>*>(user)->fetch_add(int64_t(bytes), std::memory_order_relaxed);
+  return true;
+}
+
+void fill_ray(const Ray& ray, RTCRay& r) {
+  r.org_x = ray.origin.x, r.org_y = ray.origin.y, r.org_z = ray.origin.z;
+  r.dir_x = ray.dir.x, r.dir_y = ray.dir.y, r.dir_z = ray.dir.z;
+  r.tnear = 0.0f;
+  r.tfar = ray.tmax;
+  r.time = 0.0f;
+  r.mask = ~0u;
+  r.id = 0;
+  r.flags = 0;
+}
+
+}  // namespace
+
+EmbreeAccel::EmbreeAccel(std::vector<Primitive> prims) : prims_(std::move(prims)) {
+  device_ = rtcNewDevice(nullptr);
+  if (!device_) throw InputError("Embree: cannot create a device (error " + std::to_string(rtcGetDeviceError(nullptr)) + ")");
+  rtcSetDeviceMemoryMonitorFunction(device_, track_memory, &memory_);
+  scene_ = rtcNewScene(device_);
+  rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
+  rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
+  for (uint32_t i = 0; i < prims_.size(); ++i) {
+    (prims_[i].kind == ShapeKind::Sphere ? spheres_ : triangles_).push_back(i);
+    bounds_.extend(prims_[i].bounds());
+  }
+  if (!triangles_.empty()) {
+    RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
+    auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                          3 * sizeof(float), 3 * triangles_.size()));
+    auto* idx = static_cast<unsigned*>(
+        rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), triangles_.size()));
+    for (size_t i = 0; i < triangles_.size(); ++i) {
+      const Primitive& p = prims_[triangles_[i]];
+      const Vec3 corners[3] = {p.p0, p.p1, p.p2};
+      for (int k = 0; k < 3; ++k) {
+        for (int c = 0; c < 3; ++c) v[9 * i + 3 * size_t(k) + size_t(c)] = corners[k][c];
+        idx[3 * i + size_t(k)] = unsigned(3 * i + size_t(k));
+      }
+    }
+    rtcCommitGeometry(g);
+    rtcAttachGeometryByID(scene_, g, 0);
+    rtcReleaseGeometry(g);
+  }
+  if (!spheres_.empty()) {
+    sphere_prims_.reserve(spheres_.size());
+    for (uint32_t i : spheres_) sphere_prims_.push_back(prims_[i]);
+    RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_USER);
+    rtcSetGeometryUserPrimitiveCount(g, unsigned(spheres_.size()));
+    rtcSetGeometryUserData(g, sphere_prims_.data());
+    rtcSetGeometryBoundsFunction(g, sphere_bounds, nullptr);
+    rtcSetGeometryIntersectFunction(g, sphere_intersect);
+    rtcSetGeometryOccludedFunction(g, sphere_occluded);
+    rtcCommitGeometry(g);
+    sphere_geometry_ = 1;
+    rtcAttachGeometryByID(scene_, g, sphere_geometry_);
+    rtcReleaseGeometry(g);
+  }
+  rtcCommitScene(scene_);
+  const RTCError e = rtcGetDeviceError(device_);
+  if (e != RTC_ERROR_NONE) throw InputError("Embree: building the scene failed (error " + std::to_string(int(e)) + ")");
+}
+
+EmbreeAccel::~EmbreeAccel() {
+  if (scene_) rtcReleaseScene(scene_);
+  if (device_) rtcReleaseDevice(device_);
+}
+
+bool EmbreeAccel::intersect(const Ray& ray, Hit& hit) const {
+  RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  RTCRayHit rh;
+  fill_ray(ray, rh.ray);
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  rtcIntersect1(scene_, &ctx, &rh);
+  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
+  hit.t = rh.ray.tfar;
+  hit.prim = rh.hit.geomID == sphere_geometry_ ? spheres_[rh.hit.primID] : triangles_[rh.hit.primID];
+  return true;
+}
+
+bool EmbreeAccel::occluded(const Ray& ray) const {
+  RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  RTCRay r;
+  fill_ray(ray, r);
+  rtcOccluded1(scene_, &ctx, &r);
+  return r.tfar < 0.0f;
+}
+
+}  // namespace caustica
+#endif
