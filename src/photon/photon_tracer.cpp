@@ -174,8 +174,9 @@ std::vector<Photon> run_map(const Scene& scene, const PhotonPassSettings& s, boo
   const uint64_t cap = uint64_t(wanted) * (caustic ? 200 : 50) + 1000000;
   const uint64_t stream = caustic ? 1 : 0;
 
-  std::vector<PendingPhoton> pending;
-  pending.reserve(wanted + 64);
+  // Each chunk's stored photons, in photon-index order, trimmed to what the wanted count keeps.
+  std::vector<std::vector<PendingPhoton>> chunks;
+  size_t stored = 0;
   uint64_t emitted = 0;
   uint64_t chunks_in_round = 8;
   bool done = false;
@@ -198,50 +199,54 @@ std::vector<Photon> run_map(const Scene& scene, const PhotonPassSettings& s, boo
         counts.push_back(uint32_t(out.size() - before));
       }
     });
-    // Merge in photon-index order and stop at the photon that completes the wanted count: first
-    // where each chunk's photons go and how many are kept (a scan of the counts), then the copy
-    // in parallel.
-    std::vector<size_t> at(chunks_in_round, 0), keep(chunks_in_round, 0);
-    size_t total = pending.size();
+    // Keep photons in photon-index order up to the one that completes the wanted count (a scan
+    // of the counts; the chunks move, nothing is copied).
     for (uint64_t c = 0; c < chunks_in_round && !done; ++c) {
-      at[c] = total;
+      size_t keep = 0;
       for (uint32_t n : chunk_counts[c]) {
-        keep[c] += n;
+        keep += n;
         ++emitted;
-        if (total + keep[c] >= wanted || emitted >= cap) {
+        if (stored + keep >= wanted || emitted >= cap) {
           done = true;
           break;
         }
       }
-      total += keep[c];
+      chunk_out[c].resize(keep);
+      stored += keep;
+      chunks.push_back(std::move(chunk_out[c]));
     }
-    pending.resize(total);
-    tbb::parallel_for(uint64_t(0), chunks_in_round, [&](uint64_t c) {
-      std::copy(chunk_out[c].begin(), chunk_out[c].begin() + long(keep[c]), pending.begin() + long(at[c]));
-    });
     if (s.cancel && s.cancel->load()) break;
     // Size the next round from the storage rate seen so far (deterministic).
-    const double rate = emitted > 0 ? double(pending.size()) / double(emitted) : 0.0;
-    const double need = rate > 0 ? double(wanted - std::min(wanted, pending.size())) / rate : double(cap);
+    const double rate = emitted > 0 ? double(stored) / double(emitted) : 0.0;
+    const double need = rate > 0 ? double(wanted - std::min(wanted, stored)) / rate : double(cap);
     chunks_in_round = std::clamp<uint64_t>(uint64_t(need * 1.05 / kChunk) + 1, 1, 256);
   }
-  if (pending.size() < wanted && emitted >= cap) {
-    warnings.push_back(std::string(caustic ? "caustic" : "global") + " photon map: only " +
-                       std::to_string(pending.size()) + " of " + std::to_string(wanted) + " photons stored after " +
-                       std::to_string(emitted) + " emitted (the cap); most photons escape or miss " +
+  if (stored < wanted && emitted >= cap) {
+    warnings.push_back(std::string(caustic ? "caustic" : "global") + " photon map: only " + std::to_string(stored) +
+                       " of " + std::to_string(wanted) + " photons stored after " + std::to_string(emitted) +
+                       " emitted (the cap); most photons escape or miss " +
                        (caustic ? "the specular objects" : "diffuse surfaces"));
   }
   emitted_out = emitted;
-  // Records hold flux / flux_scale, near 1, where half floats are most precise.
+  // Records hold flux / flux_scale, near 1, where half floats are most precise. The mean sums
+  // per chunk in parallel, then the chunk sums in order: the same for any thread count.
+  std::vector<size_t> at(chunks.size() + 1, 0);
+  for (size_t c = 0; c < chunks.size(); ++c) at[c + 1] = at[c] + chunks[c].size();
+  std::vector<double> chunk_sum(chunks.size(), 0.0);
+  tbb::parallel_for(size_t(0), chunks.size(), [&](size_t c) {
+    for (const PendingPhoton& p : chunks[c]) chunk_sum[c] += max_component(p.flux);
+  });
   double mean = 0;
-  for (const PendingPhoton& p : pending) mean += max_component(p.flux);
-  mean = pending.empty() ? 1.0 : mean / double(pending.size());
+  for (double x : chunk_sum) mean += x;
+  mean = stored == 0 ? 1.0 : mean / double(stored);
   flux_scale = float(mean / double(std::max<uint64_t>(emitted, 1)));
   const float inv = mean > 0 ? float(1.0 / mean) : 0.0f;
-  result.resize(pending.size());
-  tbb::parallel_for(size_t(0), pending.size(), [&](size_t i) {
-    const PendingPhoton& p = pending[i];
-    result[i] = Photon::make(p.position, p.flux * inv, p.incoming, p.normal, p.bounces);
+  result.resize(stored);
+  tbb::parallel_for(size_t(0), chunks.size(), [&](size_t c) {
+    for (size_t k = 0; k < chunks[c].size(); ++k) {
+      const PendingPhoton& p = chunks[c][k];
+      result[at[c] + k] = Photon::make(p.position, p.flux * inv, p.incoming, p.normal, p.bounces);
+    }
   });
   return result;
 }
