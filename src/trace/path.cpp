@@ -9,8 +9,11 @@ namespace caustica {
 
 PathIntegrator::PathIntegrator(const JsonSource& settings, const RenderSettings& render) {
   JsonReader r(settings.file, settings.sources);
-  r.check_object(settings.value, settings.pointer, {"rr_depth"});
+  r.check_object(settings.value, settings.pointer, {"rr_depth", "hide_emitters"});
   settings_.max_depth = render.max_depth;
+  if (settings.value.contains("hide_emitters")) {
+    settings_.hide_emitters = r.boolean(settings.value["hide_emitters"], child(settings.pointer, "hide_emitters"));
+  }
   if (settings.value.contains("rr_depth")) {
     settings_.rr_depth = int(r.integer(settings.value["rr_depth"], child(settings.pointer, "rr_depth"), 0, 1024));
   }
@@ -23,14 +26,16 @@ Color PathIntegrator::Li(const Ray& camera_ray, const Scene& scene, Sampler& sam
   for (int depth = 0; depth < settings_.max_depth; ++depth) {
     SurfaceHit hit;
     ++sampler.rays;
+    // Mitsuba's hide_emitters: what the camera sees directly of lights renders black.
+    const bool visible = !(settings_.hide_emitters && depth == 0);
     if (!scene.intersect(ray, hit)) {
-      L += beta * escaped_mis(scene, ray.dir, from);
+      if (visible) L += beta * escaped_mis(scene, ray.dir, from);
       break;
     }
     const Vec3 wo = -ray.dir;
     const Vec3 wo_l = hit.frame.to_local(wo);
     const Material& m = *hit.material;
-    L += beta * emission_mis(scene, hit, m.emitted(wo_l), from);
+    if (visible) L += beta * emission_mis(scene, hit, m.emitted(wo_l), from);
     // On the last vertex no BSDF sample follows to share the light with: no MIS weight there.
     const bool last = depth + 1 >= settings_.max_depth;
     if (!m.is_specular()) L += beta * estimate_direct(scene, hit, wo, sampler, last ? 0.0f : 1.0f);
@@ -55,6 +60,7 @@ Color PathIntegrator::Li(const Ray& camera_ray, const Scene& scene, Sampler& sam
 std::string PathIntegrator::describe() const {
   std::ostringstream s;
   s << "max_depth: " << settings_.max_depth << "\nrr_depth: " << settings_.rr_depth << "\n";
+  if (settings_.hide_emitters) s << "hide_emitters: true\n";
   return s.str();
 }
 

@@ -7,6 +7,7 @@ namespace caustica {
 struct PathSettings {
   int max_depth = 16;  // from the render block
   int rr_depth = 3;    // Russian roulette starts after this many bounces
+  bool hide_emitters = false;  // directly visible emitters (and the environment) render black
 };
 
 class PathIntegrator final : public Integrator {

@@ -23,10 +23,10 @@ PhotonSettings PhotonSettings::read(const JsonSource& src, const RenderSettings&
   if (final_gather) {
     r.check_object(v, src.pointer, {"photons", "caustic_photons", "global_k", "caustic_k", "global_radius",
                                     "caustic_radius", "gather_rays", "direct_samples", "irradiance_stride",
-                                    "glossy_threshold"});
+                                    "glossy_threshold", "hide_emitters"});
   } else {
     r.check_object(v, src.pointer, {"photons", "caustic_photons", "global_k", "caustic_k", "global_radius",
-                                    "caustic_radius", "glossy_threshold"});
+                                    "caustic_radius", "glossy_threshold", "hide_emitters"});
   }
   PhotonSettings s;
   s.max_depth = render.max_depth;
@@ -46,6 +46,7 @@ PhotonSettings PhotonSettings::read(const JsonSource& src, const RenderSettings&
   integer("direct_samples", s.direct_samples, 1, 1 << 16);
   integer("irradiance_stride", s.irradiance_stride, 0, 1 << 20);
   number("glossy_threshold", s.glossy_threshold);
+  if (v.contains("hide_emitters")) s.hide_emitters = r.boolean(v["hide_emitters"], child(src.pointer, "hide_emitters"));
   return s;
 }
 
@@ -204,14 +205,16 @@ Color PhotonIntegrator::trace_eye(const Ray& start, const Scene& scene, Sampler&
   for (; depth < settings_.max_depth; ++depth) {
     SurfaceHit hit;
     ++sampler.rays;
+    // Mitsuba's hide_emitters: what the camera sees directly of lights renders black.
+    const bool visible = !(settings_.hide_emitters && depth == 0);
     if (!scene.intersect(ray, hit)) {
-      L += beta * escaped_mis(scene, ray.dir, from);
+      if (visible) L += beta * escaped_mis(scene, ray.dir, from);
       break;
     }
     const Vec3 wo = -ray.dir;
     const Vec3 wo_l = hit.frame.to_local(wo);
     const Material& m = *hit.material;
-    L += beta * emission_mis(scene, hit, m.emitted(wo_l), from);
+    if (visible) L += beta * emission_mis(scene, hit, m.emitted(wo_l), from);
     if (is_gather_surface(m, settings_.glossy_threshold)) {
       if (sampler.aov) record_aov(hit, wo, sampler.aov, scratch);
       if (!final_gather_) return L + beta * radiance_estimate(global_, hit, wo, global_est_, scratch);

@@ -20,6 +20,7 @@ struct PhotonSettings {
   // least this rough (microfacet alpha); smoother glossy surfaces are traced through.
   float glossy_threshold = 0.3f;
   int max_depth = 16;        // from the render block
+  bool hide_emitters = false;  // directly visible emitters (and the environment) render black
 
   // Reads and validates the integrator block; unknown keys are errors.
   static PhotonSettings read(const JsonSource& src, const RenderSettings& render, bool final_gather);

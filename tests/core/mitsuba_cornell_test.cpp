@@ -25,3 +25,26 @@ TEST_CASE("Mitsuba 3 Cornell box renders with path within 2 percent of the JSON 
     REQUIRE(right.y > 2.0 * right.x);
   }
 }
+
+TEST_CASE("hide_emitters hides the emission the camera sees directly, in path and photon", "[mitsuba]") {
+  const std::string dir = std::string(CAUSTICA_SOURCE_DIR) + "/scenes";
+  const std::string scene = read_scene_file("scenes/cornell-box.json");
+  for (const char* integrator : {"path", "photon"}) {
+    INFO(integrator);
+    const std::string extra = std::string(integrator) == "photon" ? R"(, "photons": 20000, "caustic_photons": 0)" : "";
+    const TestRender shown = render_text(scene, integrator, "{}", 4, 64, 64, 3, 0, dir);
+    const TestRender hidden = render_text(scene, integrator, R"({"hide_emitters": true)" + extra + "}", 4, 64, 64, 3, 0, dir);
+    // The light fills pixels x 28..35, y 8..9 of the 64x64 image; the wall below it is lit.
+    const glm::dvec3 light_shown = region_mean(shown.image, 28, 8, 36, 10), light_hidden = region_mean(hidden.image, 28, 8, 36, 10);
+    // Hidden, the light shows only what its own diffuse surface (albedo 0.78) reflects.
+    CHECK(light_shown.x > 5.0);
+    CHECK(light_hidden.x < 0.3);
+    CHECK(light_hidden.x > 0.0);
+    const glm::dvec3 wall = region_mean(hidden.image, 24, 24, 40, 40);
+    CHECK(wall.x > 0.05);
+  }
+  // The Mitsuba integrator's hide_emitters reaches our settings.
+  const nlohmann::json doc = read_mitsuba(R"(<scene version="3.0.0"><integrator type="path">
+    <boolean name="hide_emitters" value="true"/></integrator></scene>)", "s.xml", ".", {}).doc;
+  CHECK(doc["integrator"]["hide_emitters"] == true);
+}

@@ -420,10 +420,12 @@ class Translator {
       count("caustic_lookup_size", "caustic_k");
       count("direct_samples", "direct_samples");
       std::string ignored;
-      for (const XmlProperty* p : props.unused()) ignored += (ignored.empty() ? "" : ", ") + p->name;
+      for (const XmlProperty* p : props.unused()) {
+        if (p->name != "hide_emitters") ignored += (ignored.empty() ? "" : ", ") + p->name;
+      }
       props.ignore({"volume_photons", "glossy_samples", "rr_depth", "granularity", "global_lookup_radius",
                     "caustic_lookup_radius", "volume_lookup_size", "gather_locally", "auto_cancel_gathering",
-                    "hide_emitters", "max_specular_depth", "initial_radius", "alpha", "max_passes", "photon_count",
+                    "max_specular_depth", "initial_radius", "alpha", "max_passes", "photon_count",
                     "lookup_size", "global_lookup_size"});
       if (o->type != "photonmapper") {
         warn(o->where, "\"" + o->type + "\" is rendered by Caustica's photon mapper (final gathering and a caustic map)");
@@ -438,7 +440,10 @@ class Translator {
     }
     if (const XmlProperty* p = o->prop("max_depth")) note("/render/max_depth", p->where);
     if (const XmlProperty* h = props.get("hide_emitters")) {
-      if (boolean(*h)) unsupported_property(*h, "emitters stay visible");
+      if (boolean(*h)) {
+        integ["hide_emitters"] = true;
+        note("/integrator/hide_emitters", h->where);
+      }
     }
     refuse_unused(*o, props);
     doc["integrator"] = integ;
