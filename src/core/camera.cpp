@@ -1,5 +1,6 @@
 // Pinhole camera.
 #include "core/camera.h"
+#include "core/sampling.h"
 
 namespace caustica {
 
@@ -30,6 +31,22 @@ void Camera::set_fov(float degrees, FovAxis axis) {
   fov_ = degrees;
   axis_ = axis;
   update_tan();
+}
+
+void Camera::set_lens(float aperture_radius, float focus_distance) {
+  lens_radius_ = aperture_radius;
+  focus_distance_ = focus_distance;
+}
+
+Ray Camera::generate_ray(int px, int py, const Vec2& jitter, const Vec2& lens) const {
+  Ray ray = generate_ray(px, py, jitter);
+  if (lens_radius_ <= 0.0f) return ray;
+  // The pinhole ray meets the plane of focus; the lens ray starts on the aperture and aims there.
+  const Vec3 focus = ray.origin + ray.dir * (focus_distance_ / glm::dot(ray.dir, forward_));
+  const Vec2 d = lens_radius_ * sample_concentric_disk(lens);
+  ray.origin = position_ + d.x * right_ + d.y * up_;
+  ray.dir = glm::normalize(focus - ray.origin);
+  return ray;
 }
 
 void Camera::set_mirror(bool mirror) {

@@ -16,6 +16,12 @@ class Camera {
   // Ray through image pixel (px, py) at offset `jitter` in [0, 1)^2: the same ray whether the
   // pixel is rendered in a crop window or on the whole film.
   Ray generate_ray(int px, int py, const Vec2& jitter) const;
+  // With a thin lens: `lens` in [0, 1)^2 picks the point on the aperture.
+  Ray generate_ray(int px, int py, const Vec2& jitter, const Vec2& lens) const;
+  // A thin lens of this radius focused at this distance along the view direction (Mitsuba's
+  // thinlens); radius 0 is the pinhole.
+  void set_lens(float aperture_radius, float focus_distance);
+  bool has_lens() const { return lens_radius_ > 0.0f; }
   // Projects a world point to image coordinates; false when behind the camera or off the image.
   bool project(const Vec3& p, float& x, float& y) const;
   // Image (crop window) size in pixels.
@@ -43,6 +49,7 @@ class Camera {
   float fov_ = 45.0f, tan_half_ = 0.414f, aspect_ = 1.0f;
   FovAxis axis_ = FovAxis::Y;
   bool mirror_ = false;
+  float lens_radius_ = 0.0f, focus_distance_ = 1.0f;
   int film_width_ = 1, film_height_ = 1, crop_x_ = 0, crop_y_ = 0;
   int width_ = 1, height_ = 1;
 };

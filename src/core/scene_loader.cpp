@@ -77,7 +77,7 @@ struct Loader {
   }
 
   void read_camera(const json& j, const std::string& p) {
-    r.check_object(j, p, {"position", "look_at", "up", "fov", "fov_axis", "mirror"});
+    r.check_object(j, p, {"position", "look_at", "up", "fov", "fov_axis", "mirror", "aperture_radius", "focus_distance"});
     const Vec3 pos = r.vec3(r.require(j, p, "position"), child(p, "position"));
     const Vec3 at = r.vec3(r.require(j, p, "look_at"), child(p, "look_at"));
     const Vec3 up = j.contains("up") ? r.vec3(j["up"], child(p, "up")) : Vec3(0, 1, 0);
@@ -98,6 +98,12 @@ struct Loader {
       camera.set_fov(fov, it->second);
     }
     if (j.contains("mirror")) camera.set_mirror(r.boolean(j["mirror"], child(p, "mirror")));
+    if (j.contains("aperture_radius") || j.contains("focus_distance")) {
+      const float radius = float(r.number_in(r.require(j, p, "aperture_radius"), child(p, "aperture_radius"), 0.0, 1e30));
+      const double focus = r.number(r.require(j, p, "focus_distance"), child(p, "focus_distance"));
+      if (!(focus > 0.0)) r.fail(child(p, "focus_distance"), "focus_distance must be positive");
+      camera.set_lens(radius, float(focus));
+    }
     if (crop_[2] > 0) {
       camera.set_crop(crop_[0], crop_[1], crop_[2], crop_[3]);
       rs.width = crop_[2];

@@ -60,7 +60,9 @@ Image render_image(const Scene& scene, const Integrator& integrator, const Rende
           float aov[kA] = {};
           if (want_aov) sampler.aov = aov;
           const Vec2 jitter = pixel_jitter(film_pixel, uint64_t(pass), options.seed);
-          const Ray ray = scene.camera.generate_ray(x, y, jitter);
+          // The lens sample comes first from the pixel's stream, only when there is a lens.
+          const Ray ray = scene.camera.has_lens() ? scene.camera.generate_ray(x, y, jitter, sampler.next2d())
+                                                  : scene.camera.generate_ray(x, y, jitter);
           Color L = integrator.Li(ray, scene, sampler);
           if (!is_finite(L) || L.r < 0 || L.g < 0 || L.b < 0) {
             L = Color(0.0f);

@@ -235,12 +235,12 @@ class Translator {
   // ---------------------------------------------------------------- sensor, film, sampler
   void sensor(const XmlObject& o) {
     json& doc = out_.doc;
-    if (o.type != "perspective") {
-      if (o.type != "thinlens") unsupported(o, "sensor", {"perspective"}, "rendered as a pinhole camera");
-      else unsupported(o, "sensor", {"perspective"}, "rendered as a pinhole camera (no depth of field)");
+    if (o.type != "perspective" && o.type != "thinlens") {
+      unsupported(o, "sensor", {"perspective", "thinlens"}, "rendered as a pinhole camera");
     }
     Props props(o);
-    props.ignore({"near_clip", "far_clip", "shutter_open", "shutter_close", "focus_distance", "aperture_radius"});
+    props.ignore({"near_clip", "far_clip", "shutter_open", "shutter_close"});
+    if (o.type != "thinlens") props.ignore({"focus_distance", "aperture_radius"});
     const glm::dmat4 m = props.get("to_world") ? transform(*props.get("to_world")) : glm::dmat4(1.0);
     const glm::dvec3 pos(m[3]), fwd(m * glm::dvec4(0, 0, 1, 0)), up(m * glm::dvec4(0, 1, 0, 0)),
         left(m * glm::dvec4(1, 0, 0, 0));
@@ -271,6 +271,15 @@ class Translator {
     }
     cam["fov"] = fov;
     cam["fov_axis"] = axis;
+    if (o.type == "thinlens") {
+      const XmlProperty* a = props.get("aperture_radius");
+      const XmlProperty* f = props.get("focus_distance");
+      if (!a || !f) throw InputError(o.where + ": a thinlens sensor needs aperture_radius and focus_distance");
+      cam["aperture_radius"] = number(*a);
+      cam["focus_distance"] = number(*f);
+      note("/camera/aperture_radius", a->where);
+      note("/camera/focus_distance", f->where);
+    }
     note("/camera", o.where);
     if (const XmlProperty* f = o.prop("fov")) note("/camera/fov", f->where);
     if (const XmlProperty* a = o.prop("fov_axis")) note("/camera/fov_axis", a->where);
