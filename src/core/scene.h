@@ -9,6 +9,7 @@
 #include "core/camera.h"
 #include "core/json_reader.h"
 #include "core/light.h"
+#include "core/pixel_filter.h"
 #include "core/material.h"
 #include "core/textures/texture.h"
 
@@ -21,6 +22,7 @@ struct RenderSettings {
   uint64_t seed = 0;
   int max_depth = 16;
   AccelKind accel = default_accel();  // the ray-casting backend
+  PixelFilter filter;                 // the pixel reconstruction filter (box by default)
 };
 
 // Where a JSON block came from, so that later readers can name file and JSON pointer.

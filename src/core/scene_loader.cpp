@@ -50,13 +50,14 @@ struct Loader {
   }
 
   void read_render(const json& j, const std::string& p) {
-    r.check_object(j, p, {"width", "height", "spp", "seed", "max_depth", "crop", "accel"});
+    r.check_object(j, p, {"width", "height", "spp", "seed", "max_depth", "crop", "accel", "filter"});
     RenderSettings& rs = scene().render;
     if (j.contains("width")) rs.width = int(r.integer(j["width"], child(p, "width"), 1, 16384));
     if (j.contains("height")) rs.height = int(r.integer(j["height"], child(p, "height"), 1, 16384));
     if (j.contains("spp")) rs.spp = int(r.integer(j["spp"], child(p, "spp"), 1, 1 << 24));
     if (j.contains("seed")) rs.seed = uint64_t(r.integer(j["seed"], child(p, "seed"), 0, INT64_MAX));
     if (j.contains("max_depth")) rs.max_depth = int(r.integer(j["max_depth"], child(p, "max_depth"), 1, 1024));
+    if (j.contains("filter")) read_filter(j["filter"], child(p, "filter"));
     if (j.contains("accel")) {
       const std::string a = r.string(j["accel"], child(p, "accel"));
       if (!parse_accel(a, rs.accel)) r.fail(child(p, "accel"), "unknown accel \"" + a + "\" (known: bvh, embree)");
@@ -73,6 +74,32 @@ struct Loader {
       if (crop_[0] + crop_[2] > rs.width || crop_[1] + crop_[3] > rs.height) {
         r.fail(cp, "the crop window reaches outside the " + std::to_string(rs.width) + "x" + std::to_string(rs.height) + " film");
       }
+    }
+  }
+
+  // "box", or {"type": "gaussian", "stddev": 0.5} or {"type": "tent", "radius": 1}.
+  void read_filter(const json& j, const std::string& p) {
+    PixelFilter& f = scene().render.filter;
+    if (j.is_string()) {
+      const std::string t = r.string(j, p);
+      if (t == "box") f = PixelFilter::box();
+      else if (t == "gaussian") f = PixelFilter::gaussian(0.5f);
+      else if (t == "tent") f = PixelFilter::tent(1.0f);
+      else r.fail(p, "unknown filter \"" + t + "\" (known: box, gaussian, tent)");
+      return;
+    }
+    const std::string t = r.string(r.require(j, p, "type"), child(p, "type"));
+    if (t == "box") {
+      r.check_object(j, p, {"type"});
+      f = PixelFilter::box();
+    } else if (t == "gaussian") {
+      r.check_object(j, p, {"type", "stddev"});
+      f = PixelFilter::gaussian(j.contains("stddev") ? float(r.number_in(j["stddev"], child(p, "stddev"), 0.05, 16.0)) : 0.5f);
+    } else if (t == "tent") {
+      r.check_object(j, p, {"type", "radius"});
+      f = PixelFilter::tent(j.contains("radius") ? float(r.number_in(j["radius"], child(p, "radius"), 0.05, 16.0)) : 1.0f);
+    } else {
+      r.fail(child(p, "type"), "unknown filter \"" + t + "\" (known: box, gaussian, tent)");
     }
   }
 

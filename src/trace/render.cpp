@@ -59,7 +59,9 @@ Image render_image(const Scene& scene, const Integrator& integrator, const Rende
           Sampler sampler(hash_seed(film_pixel, uint64_t(pass), options.seed));
           float aov[kA] = {};
           if (want_aov) sampler.aov = aov;
-          const Vec2 jitter = pixel_jitter(film_pixel, uint64_t(pass), options.seed);
+          Vec2 jitter = pixel_jitter(film_pixel, uint64_t(pass), options.seed);
+          // Other filters than the box place the sample around the pixel's centre.
+          if (!scene.render.filter.is_box()) jitter = Vec2(0.5f) + scene.render.filter.sample(jitter);
           // The lens sample comes first from the pixel's stream, only when there is a lens.
           const Ray ray = scene.camera.has_lens() ? scene.camera.generate_ray(x, y, jitter, sampler.next2d())
                                                   : scene.camera.generate_ray(x, y, jitter);

@@ -111,7 +111,7 @@ TEST_CASE("mitsuba: a scene in XML renders bit-identically to the same scene in 
     <float name="fov" value="40"/>
     <transform name="to_world"><lookat origin="0, 1, 5" target="0, 1, 0" up="0, 1, 0"/></transform>
     <sampler type="independent"><integer name="sample_count" value="4"/></sampler>
-    <film type="hdrfilm"><integer name="width" value="32"/><integer name="height" value="32"/></film>
+    <film type="hdrfilm"><integer name="width" value="32"/><integer name="height" value="32"/><rfilter type="box"/></film>
   </sensor>
   <bsdf type="diffuse" id="white"><rgb name="reflectance" value="0.7, 0.6, 0.5"/></bsdf>
   <bsdf type="diffuse" id="checker">
@@ -176,7 +176,7 @@ TEST_CASE("mitsuba: a scene in XML renders bit-identically to the same scene in 
   const TranslatedScene t = read_mitsuba(xml, "scene.xml", ".", {});
   CHECK(t.warnings.empty());
   const json& d = t.doc;
-  CHECK(d["render"] == json({{"width", 32}, {"height", 32}, {"spp", 4}, {"max_depth", 3}}));
+  CHECK(d["render"] == json({{"width", 32}, {"height", 32}, {"spp", 4}, {"max_depth", 3}, {"filter", "box"}}));
   CHECK(d["integrator"] == json({{"type", "path"}, {"rr_depth", 5}}));
   CHECK(d["camera"] == json::parse(R"({"position": [0, 1, 5], "look_at": [0, 1, 4], "up": [0, 1, 0], "fov": 40, "fov_axis": "x"})"));
   REQUIRE(d["objects"].size() == 4);
@@ -624,7 +624,7 @@ TEST_CASE("mitsuba: a to_world with scale x -1 mirrors the image", "[mitsuba]") 
     <float name="fov" value="40"/>
     <transform name="to_world">)" + mirror + R"(<lookat origin="0, 0.5, 6" target="0, 0.5, 0" up="0, 1, 0"/></transform>
     <sampler type="independent"><integer name="sample_count" value="16"/></sampler>
-    <film type="hdrfilm"><integer name="width" value="32"/><integer name="height" value="24"/></film>
+    <film type="hdrfilm"><integer name="width" value="32"/><integer name="height" value="24"/><rfilter type="box"/></film>
   </sensor>
   <bsdf type="diffuse" id="a"><rgb name="reflectance" value="0.8, 0.3, 0.2"/></bsdf>
   <shape type="sphere"><point name="center" x="-1" y="0.6" z="0"/><float name="radius" value="0.8"/><ref id="a"/></shape>

@@ -334,12 +334,38 @@ class Translator {
       note("/render/crop", (cw ? cw : cx ? cx : cy ? cy : ch)->where);
     }
     refuse_unused(o, props);
+    bool have_filter = false;
     for (const XmlChild& c : o.children) {
       if (c.object->tag != "rfilter") bad_child(o, c);
-      if (c.object->type != "box") {
-        warn(c.where, "reconstruction filter \"" + c.object->type + "\" is rendered as a box filter (Caustica's only one)");
-      }
+      have_filter = true;
+      rfilter(*c.object);
     }
+    // Mitsuba's default is a Gaussian of standard deviation 0.5.
+    if (!have_filter) render["filter"] = {{"type", "gaussian"}, {"stddev", 0.5}};
+  }
+
+  void rfilter(const XmlObject& o) {
+    json& render = out_.doc["render"];
+    Props props(o);
+    note("/render/filter", o.where);
+    if (o.type == "box") {
+      render["filter"] = "box";
+    } else if (o.type == "gaussian") {
+      const XmlProperty* s = props.get("stddev");
+      render["filter"] = {{"type", "gaussian"}, {"stddev", s ? number(*s) : 0.5}};
+      if (s) note("/render/filter/stddev", s->where);
+    } else if (o.type == "tent") {
+      const XmlProperty* r = props.get("radius");
+      render["filter"] = {{"type", "tent"}, {"radius", r ? number(*r) : 1.0}};
+      if (r) note("/render/filter/radius", r->where);
+    } else {
+      // Filters with negative lobes (mitchell, catmullrom, lanczos) cannot be sampled with
+      // weight 1; the Gaussian is the nearest positive one.
+      warn(o.where, "reconstruction filter \"" + o.type + "\" is rendered as a Gaussian of stddev 0.5 (box, gaussian and tent are supported)");
+      render["filter"] = {{"type", "gaussian"}, {"stddev", 0.5}};
+      props.ignore({"radius", "lobes", "B", "C", "b", "c"});
+    }
+    refuse_unused(o, props);
   }
 
   void sampler(const XmlObject& o) {
