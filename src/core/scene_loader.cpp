@@ -128,7 +128,7 @@ struct Loader {
     if (j.contains("aperture_radius") || j.contains("focus_distance")) {
       const float radius = float(r.number_in(r.require(j, p, "aperture_radius"), child(p, "aperture_radius"), 0.0, 1e30));
       const double focus = r.number(r.require(j, p, "focus_distance"), child(p, "focus_distance"));
-      if (!(focus > 0.0)) r.fail(child(p, "focus_distance"), "focus_distance must be positive");
+      if (!(float(focus) > 0.0f)) r.fail(child(p, "focus_distance"), "focus_distance must be positive");
       camera.set_lens(radius, float(focus));
     }
     if (crop_[2] > 0) {

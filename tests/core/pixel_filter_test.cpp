@@ -56,6 +56,12 @@ TEST_CASE("pixel filter: Mitsuba's rfilter and its default", "[filter][mitsuba]"
   // No rfilter: Mitsuba's default Gaussian.
   CHECK(film("").doc["render"]["filter"] == nlohmann::json({{"type", "gaussian"}, {"stddev", 0.5}}));
   CHECK(film("<rfilter type=\"box\"/>").doc["render"]["filter"] == "box");
+  CHECK(film("<rfilter type=\"box\"><float name=\"radius\" value=\"0.5\"/></rfilter>").doc["render"]["filter"] == "box");
+  // A sensor without a film, and a scene without a sensor: Mitsuba's default film, Gaussian.
+  const nlohmann::json gaussian = {{"type", "gaussian"}, {"stddev", 0.5}};
+  CHECK(read_mitsuba("<scene version=\"3.0.0\"><sensor type=\"perspective\"/></scene>", "s.xml", ".", {})
+            .doc["render"]["filter"] == gaussian);
+  CHECK(read_mitsuba("<scene version=\"3.0.0\"/>", "s.xml", ".", {}).doc["render"]["filter"] == gaussian);
   CHECK(film("<rfilter type=\"tent\"><float name=\"radius\" value=\"1.5\"/></rfilter>").doc["render"]["filter"] ==
         nlohmann::json({{"type", "tent"}, {"radius", 1.5}}));
   // A filter with negative lobes: the Gaussian, with a warning.

@@ -110,6 +110,7 @@ class Translator {
       doc["render"]["width"] = 768;
       doc["render"]["height"] = 576;
       doc["render"]["spp"] = 4;
+      doc["render"]["filter"] = {{"type", "gaussian"}, {"stddev", 0.5}};
     }
     if (!have_integrator) {
       doc["integrator"] = {{"type", "path"}, {"rr_depth", 5}};
@@ -294,6 +295,7 @@ class Translator {
     render["width"] = 768;
     render["height"] = 576;
     render["spp"] = 4;
+    render["filter"] = {{"type", "gaussian"}, {"stddev", 0.5}};  // Mitsuba's default film's filter
     note("/render", o.where);
     for (const XmlChild& c : o.children) {
       if (c.object->tag == "film") film(*c.object);
@@ -334,14 +336,11 @@ class Translator {
       note("/render/crop", (cw ? cw : cx ? cx : cy ? cy : ch)->where);
     }
     refuse_unused(o, props);
-    bool have_filter = false;
+    // Without an rfilter, Mitsuba's default Gaussian (set with the sensor) stays.
     for (const XmlChild& c : o.children) {
       if (c.object->tag != "rfilter") bad_child(o, c);
-      have_filter = true;
       rfilter(*c.object);
     }
-    // Mitsuba's default is a Gaussian of standard deviation 0.5.
-    if (!have_filter) render["filter"] = {{"type", "gaussian"}, {"stddev", 0.5}};
   }
 
   void rfilter(const XmlObject& o) {
@@ -349,6 +348,10 @@ class Translator {
     Props props(o);
     note("/render/filter", o.where);
     if (o.type == "box") {
+      // Mitsuba's box may name its radius (default 0.5, one pixel across).
+      if (const XmlProperty* r = props.get("radius")) {
+        if (number(*r) != 0.5) warn(r->where, "a box filter of radius other than 0.5 is rendered with radius 0.5");
+      }
       render["filter"] = "box";
     } else if (o.type == "gaussian") {
       const XmlProperty* s = props.get("stddev");
