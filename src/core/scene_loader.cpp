@@ -162,17 +162,24 @@ struct Loader {
       const std::string mp = child(p, it.key());
       const json& m = it.value();
       if (!m.is_object()) r.fail(mp, "expected an object");
-      std::vector<std::unique_ptr<Material>> nested;
-      const MaterialContext ctx{r, base_dir, nested, scene().textures, out.warnings};
-      std::unique_ptr<Material> mat = read_material(ctx, m, mp);
-      for (auto& n : nested) {
-        scene().materials.push_back(std::move(n));
-        scene().material_names.push_back(it.key() + " (nested)");
-      }
-      material_ids[it.key()] = static_cast<uint32_t>(scene().materials.size());
-      scene().materials.push_back(std::move(mat));
-      scene().material_names.push_back(it.key());
+      add_material(it.key(), m, mp);
     }
+  }
+
+  // Reads a material block and adds it (and the materials nested in it) under `name`.
+  uint32_t add_material(const std::string& name, const json& m, const std::string& p) {
+    std::vector<std::unique_ptr<Material>> nested;
+    const MaterialContext ctx{r, base_dir, nested, scene().textures, out.warnings};
+    std::unique_ptr<Material> mat = read_material(ctx, m, p);
+    for (auto& n : nested) {
+      scene().materials.push_back(std::move(n));
+      scene().material_names.push_back(name + " (nested)");
+    }
+    const uint32_t id = static_cast<uint32_t>(scene().materials.size());
+    material_ids[name] = id;
+    scene().materials.push_back(std::move(mat));
+    scene().material_names.push_back(name);
+    return id;
   }
 
   uint32_t material_ref(const json& obj, const std::string& p, const char* key = "material") {
@@ -300,16 +307,8 @@ struct Loader {
       if (it == material_ids.end()) {
         json m = id >= 0 ? mesh_material_json(mesh.materials[size_t(id)], mesh.material_dir, p) : json{{"type", "diffuse"}, {"reflectance", 0.5}};
         if (id < 0) r.warn(p, "faces without a material in " + file + " get a grey diffuse one", out.warnings);
-        std::vector<std::unique_ptr<Material>> nested;
-        const MaterialContext ctx{r, base_dir, nested, scene().textures, out.warnings};
-        std::unique_ptr<Material> mat = read_material(ctx, m, p + " (material \"" + key + "\" of the mesh file)");
-        for (auto& n : nested) {
-          scene().materials.push_back(std::move(n));
-          scene().material_names.push_back(key + " (nested)");
-        }
-        it = material_ids.emplace(key, static_cast<uint32_t>(scene().materials.size())).first;
-        scene().materials.push_back(std::move(mat));
-        scene().material_names.push_back(key);
+        add_material(key, m, p + " (material \"" + key + "\" of the mesh file)");
+        it = material_ids.find(key);
       }
       add_object(std::move(shapes), it->second, j, p);
     }

@@ -129,6 +129,16 @@ class Translator {
   static constexpr int kMaxExpanded = 100000;
 
   void note(const std::string& pointer, const std::string& where) { (*out_.sources)[pointer] = where; }
+  // The places recorded under pointer `from` (it and its children) recorded under `to` too.
+  void copy_sources(const std::string& from, const std::string& to) {
+    std::vector<std::pair<std::string, std::string>> copies;
+    for (const auto& [k, v] : *out_.sources) {
+      if (k.compare(0, from.size(), from) == 0 && (k.size() == from.size() || k[from.size()] == '/')) {
+        copies.emplace_back(to + k.substr(from.size()), v);
+      }
+    }
+    for (auto& c : copies) (*out_.sources)[c.first] = c.second;
+  }
   void warn(const std::string& where, const std::string& message) { out_.warnings.push_back(where + ": " + message); }
 
   // An unsupported plugin: an error, or with --ignore-unsupported a warning saying what happens.
@@ -507,14 +517,7 @@ class Translator {
     m["emission"] = *emission;
     out_.doc["materials"][lit] = m;
     // Errors inside the copy point at the BSDF.
-    const std::string from = "/materials/" + name, to = "/materials/" + lit;
-    std::vector<std::pair<std::string, std::string>> copies;
-    for (const auto& [k, v] : *out_.sources) {
-      if (k.compare(0, from.size(), from) == 0 && (k.size() == from.size() || k[from.size()] == '/')) {
-        copies.emplace_back(to + k.substr(from.size()), v);
-      }
-    }
-    for (auto& c : copies) (*out_.sources)[c.first] = c.second;
+    copy_sources("/materials/" + name, "/materials/" + lit);
     return lit;
   }
 
@@ -590,23 +593,11 @@ class Translator {
     }
     if (!nested.empty()) {
       if (o.type == "twosided" && nested.size() <= 2) {
-        if (nested.size() == 1) {
-          // One BSDF: the pointers recorded under /bsdf/0 name it as /bsdf.
-          const std::string from = p + "/bsdf/0";
-          std::vector<std::pair<std::string, std::string>> moved;
-          for (const auto& [k, v] : *out_.sources) {
-            if (k.compare(0, from.size(), from) == 0) moved.emplace_back(p + "/bsdf" + k.substr(from.size()), v);
-          }
-          for (auto& m : moved) (*out_.sources)[m.first] = m.second;
-        }
+        // One BSDF: the pointers recorded under /bsdf/0 name it as /bsdf.
+        if (nested.size() == 1) copy_sources(p + "/bsdf/0", p + "/bsdf");
         j["bsdf"] = nested.size() == 1 ? nested[0] : nested;
       } else if (o.type == "mask" && nested.size() == 1) {
-        const std::string from = p + "/bsdf/0";
-        std::vector<std::pair<std::string, std::string>> moved;
-        for (const auto& [k, v] : *out_.sources) {
-          if (k.compare(0, from.size(), from) == 0) moved.emplace_back(p + "/bsdf" + k.substr(from.size()), v);
-        }
-        for (auto& m : moved) (*out_.sources)[m.first] = m.second;
+        copy_sources(p + "/bsdf/0", p + "/bsdf");
         j["bsdf"] = nested[0];
       } else {
         throw InputError(o.where + ": <bsdf type=\"" + o.type + "\"> takes " +
