@@ -153,11 +153,11 @@ MeshData parse_serialized(const std::string& bytes, const std::string& name, int
     in.reals(nv, 2, dbl, uvs.data(), "texture coordinates");
   }
   if (flags & kColors) in.skip(size_t(nv) * 3 * (dbl ? 8 : 4), "vertex colours");
-  const bool wide = nv > std::numeric_limits<uint32_t>::max();
   for (size_t t = 0; t < nt; ++t) {
     glm::ivec3 tri;
     for (int k = 0; k < 3; ++k) {
-      const uint64_t i = wide ? in.get<uint64_t>("triangle indices") : in.get<uint32_t>("triangle indices");
+      // Always uint32, as Mitsuba's own readers do (vertex counts above 2^31 are refused above).
+      const uint64_t i = in.get<uint32_t>("triangle indices");
       if (i >= nv) throw InputError(name + ": triangle " + std::to_string(t) + " has a vertex index out of range");
       tri[k] = int(i);
     }
