@@ -12,6 +12,9 @@ struct Sampler {
   // The photon integrators write [global photons, caustic photons, global radius, caustic radius].
   static constexpr int kAovCount = 4;
   float* aov = nullptr;
+  // The image pixel (y * width + x) this sample belongs to, for integrators that keep per-pixel
+  // state (SPPM); in a progressive render each pixel is visited by one thread per pass.
+  uint64_t pixel = 0;
   Sampler() = default;
   explicit Sampler(uint64_t seed) : rng(seed) {}
   float next1d() { return rng.next_float(); }

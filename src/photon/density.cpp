@@ -10,17 +10,19 @@ namespace {
 template <class Weight>
 Color gather(const PhotonMap& map, const Vec3& p, const Vec3& n_side, const EstimateSettings& s,
              std::vector<Neighbour>& scratch, EstimateInfo* info, Weight weight_of) {
-  const size_t found = map.knn(p, s.k, s.max_radius, scratch);
+  const size_t found = s.fixed_radius ? map.radius_query(p, s.max_radius, scratch)
+                                      : map.knn(p, s.k, s.max_radius, scratch);
   if (info) *info = EstimateInfo{};
   if (found == 0) return Color(0.0f);
   // Fewer than k photons within max_radius: the disc is the whole search radius.
-  const float r2 = found < s.k ? s.max_radius * s.max_radius : scratch.back().dist2;
+  const float r2 = s.fixed_radius || found < s.k ? s.max_radius * s.max_radius : scratch.back().dist2;
   if (!(r2 > 0.0f)) return Color(0.0f);
   const float r = std::sqrt(r2);
   Color sum(0.0f);
   size_t used = 0;
   for (const Neighbour& nb : scratch) {
     const Photon& ph = map[nb.index];
+    if (int(ph.bounces) < s.min_bounces || int(ph.bounces) > s.max_bounces) continue;
     const Vec3 wi = ph.incoming_dir();
     if (glm::dot(wi, n_side) <= 0.0f || !normals_agree(ph.surface_normal(), n_side)) continue;
     Color c = map.power(nb.index) * weight_of(wi);
@@ -49,7 +51,14 @@ Color irradiance_estimate(const PhotonMap& map, const Vec3& p, const Vec3& n_sid
   return gather(map, p, n_side, s, scratch, info, [](const Vec3&) { return Color(1.0f); });
 }
 
+double progressive_radius2_scale(int pass, double alpha) {
+  double scale = 1.0;
+  for (int j = 1; j <= pass; ++j) scale *= (double(j) + alpha) / double(j + 1);
+  return scale;
+}
+
 void IrradianceCache::build(const PhotonMap& global, size_t stride, const EstimateSettings& s) {
+  settings_ = s;
   stride = std::max<size_t>(1, stride);
   const size_t n = (global.size() + stride - 1) / stride;
   std::vector<Color> irradiance(n);

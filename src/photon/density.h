@@ -12,7 +12,21 @@ struct EstimateSettings {
   float max_radius = 1.0f;   // search radius limit
   bool cone_filter = false;  // Jensen's cone filter, weight 1 - d / (cone_k r)
   float cone_k = 1.1f;
+  // Every photon within max_radius instead of the k nearest (progressive photon mapping).
+  bool fixed_radius = false;
+  // Only photons stored after min_bounces..max_bounces bounces count (Photon::bounces), so
+  // that a light path joined to an eye path stays within max_depth. The disc is still the
+  // one the k nearest photons of any bounce count span: the estimate is of the subset's density.
+  int min_bounces = 0;
+  int max_bounces = 1 << 30;
 };
+
+// The estimate settings with the bounce window [min_bounces, max_bounces].
+inline EstimateSettings with_bounces(EstimateSettings s, int min_bounces, int max_bounces) {
+  s.min_bounces = min_bounces;
+  s.max_bounces = max_bounces;
+  return s;
+}
 
 struct EstimateInfo {
   size_t photons = 0;  // photons used (after the normal and side tests)
@@ -35,7 +49,12 @@ Color irradiance_estimate(const PhotonMap& map, const Vec3& p, const Vec3& n_sid
 // Lookups read the nearest precomputed point whose normal agrees, instead of a k-NN estimate.
 class IrradianceCache {
  public:
+  // The points' irradiance counts the photons s admits (its bounce window included).
   void build(const PhotonMap& global, size_t stride, const EstimateSettings& s);
+  // The bounce window the irradiance was computed for: lookups for another window must not use it.
+  bool serves(const EstimateSettings& s) const {
+    return s.min_bounces == settings_.min_bounces && s.max_bounces == settings_.max_bounces;
+  }
   // False when no precomputed point with an agreeing normal lies within max_radius.
   bool lookup(const Vec3& p, const Vec3& n_side, float max_radius, Color& E, std::vector<Neighbour>& scratch) const;
   size_t size() const { return points_.size(); }
@@ -45,7 +64,13 @@ class IrradianceCache {
 
  private:
   PhotonMap points_;  // records reused: power = irradiance, normal = surface normal
+  EstimateSettings settings_;
 };
+
+// Progressive photon mapping's radius schedule (Knaus and Zwicker 2011, eq. 14): the squared
+// radius of pass `pass` (0-based) over the first pass's, prod_{j=1..pass} (j + alpha) / (j + 1).
+// It falls like pass^(alpha - 1): the bias vanishes while the variance of the mean still does.
+double progressive_radius2_scale(int pass, double alpha);
 
 // True when a photon's stored normal agrees with the query's (both on the same side).
 inline bool normals_agree(const Vec3& a, const Vec3& b) { return glm::dot(a, b) > 0.9f; }

@@ -4,6 +4,7 @@
 #include <memory>
 #include <string>
 #include <vector>
+#include "core/image.h"
 #include "core/json_reader.h"
 #include "core/sampler.h"
 #include "core/scene.h"
@@ -21,6 +22,14 @@ class Integrator {
   virtual ~Integrator() = default;
   // Work done once before the eye pass (the photon pass goes here).
   virtual void preprocess(const Scene&, const PreprocessContext&) {}
+  // Progressive integrators change between passes (fresh photon maps, smaller radii): the
+  // render loop then runs pass by pass and calls begin_pass(scene, i, context) before pass i.
+  virtual bool progressive() const { return false; }
+  // Prepares pass `pass` (0, 1, ...); false when cancelled, and the pass is not rendered.
+  virtual bool begin_pass(const Scene&, int /*pass*/, const PreprocessContext&) { return true; }
+  // Turns the per-pixel mean of Li over the passes into the image (SPPM adds its photon
+  // statistics here); pixel_passes[i] is the number of passes pixel i received.
+  virtual void resolve(Image& /*mean*/, const std::vector<int>& /*pixel_passes*/) const {}
   // Radiance arriving at the camera along `ray`.
   virtual Color Li(const Ray& ray, const Scene& scene, Sampler& sampler) const = 0;
   virtual std::string name() const = 0;

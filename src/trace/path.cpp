@@ -23,7 +23,9 @@ Color PathIntegrator::Li(const Ray& camera_ray, const Scene& scene, Sampler& sam
   Color L(0.0f), beta(1.0f);
   Ray ray = camera_ray;
   BsdfVertex from;  // the camera counts emission fully, as a delta bounce does
-  for (int depth = 0; depth < settings_.max_depth; ++depth) {
+  // Paths have at most max_depth + 1 segments (Mitsuba's max_depth counts them): the segment
+  // leaving vertex max_depth is traced for the emission it reaches, and ends the path there.
+  for (int depth = 0; depth <= settings_.max_depth; ++depth) {
     SurfaceHit hit;
     ++sampler.rays;
     // Mitsuba's hide_emitters: what the camera sees directly of lights renders black.
@@ -36,10 +38,8 @@ Color PathIntegrator::Li(const Ray& camera_ray, const Scene& scene, Sampler& sam
     const Vec3 wo_l = hit.frame.to_local(wo);
     const Material& m = *hit.material;
     if (visible) L += beta * emission_mis(scene, hit, m.emitted(wo_l), from);
-    // On the last vertex no BSDF sample follows to share the light with: no MIS weight there.
-    const bool last = depth + 1 >= settings_.max_depth;
-    if (!m.is_specular()) L += beta * estimate_direct(scene, hit, wo, sampler, last ? 0.0f : 1.0f);
-    if (last) break;
+    if (depth == settings_.max_depth) break;
+    if (!m.is_specular()) L += beta * estimate_direct(scene, hit, wo, sampler, 1.0f);
     BsdfSample bs;
     const Vec2 u = sampler.next2d();
     if (!m.sample(wo_l, u, sampler.next1d(), bs, hit.sp)) break;

@@ -1,6 +1,7 @@
 // Photon mapping eye pass: at the first diffuse hit, direct light by shadow rays, caustics
 // from the caustic map, indirect light by final gathering into the global map (Jensen 1996).
 #include "trace/photon_integrator.h"
+#include <algorithm>
 #include <chrono>
 #include <iomanip>
 #include <unistd.h>
@@ -23,10 +24,10 @@ PhotonSettings PhotonSettings::read(const JsonSource& src, const RenderSettings&
   if (final_gather) {
     r.check_object(v, src.pointer, {"photons", "caustic_photons", "global_k", "caustic_k", "global_radius",
                                     "caustic_radius", "gather_rays", "direct_samples", "irradiance_stride",
-                                    "glossy_threshold", "hide_emitters"});
+                                    "glossy_threshold", "hide_emitters", "progressive", "alpha"});
   } else {
     r.check_object(v, src.pointer, {"photons", "caustic_photons", "global_k", "caustic_k", "global_radius",
-                                    "caustic_radius", "glossy_threshold", "hide_emitters"});
+                                    "caustic_radius", "glossy_threshold", "hide_emitters", "progressive", "alpha"});
   }
   PhotonSettings s;
   s.max_depth = render.max_depth;
@@ -47,6 +48,10 @@ PhotonSettings PhotonSettings::read(const JsonSource& src, const RenderSettings&
   integer("irradiance_stride", s.irradiance_stride, 0, 1 << 20);
   number("glossy_threshold", s.glossy_threshold);
   if (v.contains("hide_emitters")) s.hide_emitters = r.boolean(v["hide_emitters"], child(src.pointer, "hide_emitters"));
+  if (v.contains("progressive")) s.progressive = r.boolean(v["progressive"], child(src.pointer, "progressive"));
+  if (v.contains("alpha")) {
+    s.alpha = float(r.number_in(v["alpha"], child(src.pointer, "alpha"), 1e-3, 0.999));
+  }
   return s;
 }
 
@@ -69,63 +74,95 @@ PhotonIntegrator::PhotonIntegrator(const JsonSource& settings, const RenderSetti
     : final_gather_(final_gather), settings_(PhotonSettings::read(settings, render, final_gather)) {}
 
 void PhotonIntegrator::preprocess(const Scene& scene, const PreprocessContext& context) {
+  check_memory(settings_.photons + (final_gather_ ? settings_.caustic_photons : 0));
+  global_est_.k = size_t(settings_.global_k);
+  caustic_est_.k = size_t(settings_.caustic_k);
+  caustic_est_.cone_filter = true;
+  global_est_.fixed_radius = caustic_est_.fixed_radius = settings_.progressive;
+  // Radii from the photon density on the scene's surfaces: a disc holding k photons if they
+  // were spread evenly. A progressive pass estimates within fixed radii, shrinking from these;
+  // otherwise they bound the k-NN search, 3x wider for the global map (it also covers dim regions).
+  const float area = std::max(scene.surface_area(), 1e-12f);
+  auto even_radius = [&](int k, size_t photons) {
+    return std::sqrt(float(k) * area / (kPi * float(std::max<size_t>(photons, 1))));
+  };
+  if (settings_.progressive) {
+    global_r1_ = settings_.global_radius > 0 ? settings_.global_radius : even_radius(settings_.global_k, settings_.photons);
+    caustic_r1_ = settings_.caustic_radius > 0 ? settings_.caustic_radius
+                                               : even_radius(settings_.caustic_k, settings_.caustic_photons);
+    return;  // the maps are traced pass by pass (begin_pass)
+  }
+  if (!build_maps(scene, context.seed, context)) return;
+  global_est_.max_radius = settings_.global_radius > 0 ? settings_.global_radius
+                                                       : 3.0f * even_radius(settings_.global_k, global_.size());
+  caustic_est_.max_radius = settings_.caustic_radius > 0 ? settings_.caustic_radius
+                                                         : even_radius(settings_.caustic_k, caustic_.size());
+  build_irradiance();
+}
+
+bool PhotonIntegrator::begin_pass(const Scene& scene, int pass, const PreprocessContext& context) {
+  if (!settings_.progressive) return true;
+  const float scale = float(std::sqrt(progressive_radius2_scale(pass, settings_.alpha)));
+  global_est_.max_radius = global_r1_ * scale;
+  caustic_est_.max_radius = caustic_r1_ * scale;
+  // Pass i's photons come from their own seed: the image is the same for any thread count.
+  const uint64_t seed = pass == 0 ? context.seed : hash_seed(context.seed, uint64_t(pass), 0x70706d);  // "ppm"
+  if (!build_maps(scene, seed, context)) return false;
+  build_irradiance();
+  return true;
+}
+
+void PhotonIntegrator::build_irradiance() {
+  if (!final_gather_ || settings_.irradiance_stride <= 0 || global_.empty()) return;
+  const auto t0 = std::chrono::steady_clock::now();
+  // For the gather from the camera ray's hit (eye vertex 1), by far the most common lookup.
+  irradiance_.build(global_, size_t(settings_.irradiance_stride), at_depth(global_est_, 1));
+  stats_.irradiance_seconds += seconds_since(t0);
+  stats_.irradiance_bytes = irradiance_.memory_bytes();
+}
+
+bool PhotonIntegrator::build_maps(const Scene& scene, uint64_t seed, const PreprocessContext& context) {
   PhotonPassSettings pass;
   pass.global_photons = settings_.photons;
   pass.caustic_photons = final_gather_ ? settings_.caustic_photons : 0;
   pass.max_depth = settings_.max_depth;
   pass.glossy_threshold = settings_.glossy_threshold;
-  pass.seed = context.seed;
+  pass.seed = seed;
   pass.cancel = context.cancel;
-  check_memory(pass.global_photons + pass.caustic_photons);
   PhotonPassResult r = trace_photons(scene, pass);
-  stats_.photon_seconds = r.seconds;
-  stats_.global_emitted = r.global_emitted;
-  stats_.caustic_emitted = r.caustic_emitted;
+  stats_.photon_seconds += r.seconds;
+  stats_.global_emitted += r.global_emitted;
+  stats_.caustic_emitted += r.caustic_emitted;
+  ++stats_.passes;
   for (const auto& w : r.warnings) {
+    if (std::find(warnings_.begin(), warnings_.end(), w) != warnings_.end()) continue;
     if (!context.quiet) std::cerr << "warning: " << w << "\n";
     warnings_.push_back(w);
   }
-  const size_t n_global = r.global.size(), n_caustic = r.caustic.size();
   auto t0 = std::chrono::steady_clock::now();
   global_.build(std::move(r.global), r.global_scale);
   caustic_.build(std::move(r.caustic), r.caustic_scale);
-  stats_.build_seconds = seconds_since(t0);
+  stats_.build_seconds += seconds_since(t0);
   stats_.global_bytes = global_.memory_bytes();
   stats_.caustic_bytes = caustic_.memory_bytes();
 
-  // Default radii from the photon density on the scene's surfaces: a disc holding k photons
-  // if they were spread evenly, widened 3x for the global map (it also bounds dim regions).
-  const float area = std::max(scene.surface_area(), 1e-12f);
-  global_est_.k = size_t(settings_.global_k);
-  global_est_.max_radius = settings_.global_radius > 0
-      ? settings_.global_radius
-      : 3.0f * std::sqrt(float(settings_.global_k) * area / (kPi * float(std::max<size_t>(n_global, 1))));
-  caustic_est_.k = size_t(settings_.caustic_k);
-  caustic_est_.cone_filter = true;
-  caustic_est_.max_radius = settings_.caustic_radius > 0
-      ? settings_.caustic_radius
-      : std::sqrt(float(settings_.caustic_k) * area / (kPi * float(std::max<size_t>(n_caustic, 1))));
-
-  const bool cancelled = context.cancel && context.cancel->load();
-  if (final_gather_ && settings_.irradiance_stride > 0 && !global_.empty() && !cancelled) {
-    t0 = std::chrono::steady_clock::now();
-    irradiance_.build(global_, size_t(settings_.irradiance_stride), global_est_);
-    stats_.irradiance_seconds = seconds_since(t0);
-    stats_.irradiance_bytes = irradiance_.memory_bytes();
-  }
+  return !(context.cancel && context.cancel->load());
 }
 
-Color PhotonIntegrator::indirect_at(const SurfaceHit& hit, const Vec3& wo, std::vector<Neighbour>& scratch) const {
+Color PhotonIntegrator::indirect_at(const SurfaceHit& hit, const Vec3& wo, std::vector<Neighbour>& scratch,
+                                    int depth) const {
+  const EstimateSettings est = at_depth(global_est_, depth);
+  if (est.max_bounces < 0) return Color(0.0f);
   const Vec3 n_side = glm::dot(wo, hit.n) >= 0 ? hit.n : -hit.n;
-  if (irradiance_.size() > 0 && hit.material->is_lambertian()) {
+  if (irradiance_.size() > 0 && irradiance_.serves(est) && hit.material->is_lambertian()) {
     Color E;
-    if (irradiance_.lookup(hit.p, n_side, global_est_.max_radius, E, scratch)) return hit.material->albedo(hit.sp) * kInvPi * E;
+    if (irradiance_.lookup(hit.p, n_side, est.max_radius, E, scratch)) return hit.material->albedo(hit.sp) * kInvPi * E;
   }
-  return radiance_estimate(global_, hit, wo, global_est_, scratch);
+  return radiance_estimate(global_, hit, wo, est, scratch);
 }
 
 Color PhotonIntegrator::final_gather(const Scene& scene, const SurfaceHit& hit, const Vec3& wo, Sampler& sampler,
-                                     std::vector<Neighbour>& scratch, bool skip_delta) const {
+                                     std::vector<Neighbour>& scratch, bool skip_delta, int eye_depth) const {
   const int n = settings_.gather_rays;
   if (n <= 0) return Color(0.0f);
   const Vec3 wo_l = hit.frame.to_local(wo);
@@ -143,7 +180,9 @@ Color PhotonIntegrator::final_gather(const Scene& scene, const SurfaceHit& hit, 
     Color throughput = bs.weight;
     Ray ray = spawn_ray(hit.p, hit.n, wi);
     const BsdfVertex from{bs.delta, gather_ratio() * bs.pdf, hit.p};
-    for (int depth = 0; depth < settings_.max_depth; ++depth) {
+    // The gather ray's vertices are eye vertices eye_depth + 1, + 2, ...; at eye vertex
+    // max_depth only the first segment's emission still fits in the path.
+    for (int depth = 0; eye_depth + 1 + depth <= settings_.max_depth; ++depth) {
       SurfaceHit g;
       ++sampler.rays;
       // The first segment's emission is direct light, shared with the shadow rays by MIS;
@@ -154,8 +193,9 @@ Color PhotonIntegrator::final_gather(const Scene& scene, const SurfaceHit& hit, 
       }
       const Material& m = *g.material;
       if (depth == 0) sum += throughput * emission_mis(scene, g, m.emitted(g.frame.to_local(-ray.dir)), from);
+      if (eye_depth + 1 + depth == settings_.max_depth) break;
       if (is_gather_surface(m, settings_.glossy_threshold)) {
-        sum += throughput * indirect_at(g, -ray.dir, scratch);
+        sum += throughput * indirect_at(g, -ray.dir, scratch, eye_depth + 1 + depth);
         // The photon estimate has no delta part: a coat (plastic) passes the gather ray on, as
         // the caustic map's photons pass through it; the emission it reaches is the caustic map's.
         BsdfSample coat[2];
@@ -202,7 +242,8 @@ Color PhotonIntegrator::trace_eye(const Ray& start, const Scene& scene, Sampler&
   // Emission and the environment count in full after the camera and delta bounces; after a
   // near-specular glossy bounce they are weighted against that vertex's shadow ray (MIS).
   BsdfVertex from;
-  for (; depth < settings_.max_depth; ++depth) {
+  // As in `path`: at most max_depth + 1 segments; the last only for the emission it reaches.
+  for (; depth <= settings_.max_depth; ++depth) {
     SurfaceHit hit;
     ++sampler.rays;
     // Mitsuba's hide_emitters: what the camera sees directly of lights renders black.
@@ -215,21 +256,22 @@ Color PhotonIntegrator::trace_eye(const Ray& start, const Scene& scene, Sampler&
     const Vec3 wo_l = hit.frame.to_local(wo);
     const Material& m = *hit.material;
     if (visible) L += beta * emission_mis(scene, hit, m.emitted(wo_l), from);
+    if (depth == settings_.max_depth) break;
     if (is_gather_surface(m, settings_.glossy_threshold)) {
       if (sampler.aov) record_aov(hit, wo, sampler.aov, scratch);
-      if (!final_gather_) return L + beta * radiance_estimate(global_, hit, wo, global_est_, scratch);
+      if (!final_gather_) return L + beta * radiance_estimate(global_, hit, wo, at_depth(global_est_, depth), scratch);
       // Direct light: shadow rays, MIS-weighted against the final-gather rays, which are BSDF
       // samples and count the emission their first segment reaches (final_gather).
       Color direct(0.0f);
       const float ratio = gather_ratio();
       for (int i = 0; i < settings_.direct_samples; ++i) direct += estimate_direct(scene, hit, wo, sampler, ratio);
       L += beta * direct / float(settings_.direct_samples);
-      if (!caustic_.empty()) L += beta * radiance_estimate(caustic_, hit, wo, caustic_est_, scratch);
+      if (!caustic_.empty()) L += beta * radiance_estimate(caustic_, hit, wo, at_depth(caustic_est_, depth), scratch);
       // A delta lobe beside the diffuse one (plastic's coat): traced as the eye path goes on,
       // while the final gather covers the other lobes only. Without splits left, the gather's
       // delta samples carry it instead.
       const bool trace_coat = splits_left > 0 && m.has(kBsdfSpecular);
-      L += beta * final_gather(scene, hit, wo, sampler, scratch, trace_coat);
+      L += beta * final_gather(scene, hit, wo, sampler, scratch, trace_coat, depth);
       if (trace_coat) {
         BsdfSample coat[2];
         const int n = m.specular_lobes(wo_l, coat, hit.sp);
@@ -254,13 +296,9 @@ Color PhotonIntegrator::trace_eye(const Ray& start, const Scene& scene, Sampler&
       }
       return L + beta * split;
     }
-    if (!m.is_specular()) {
-      // A glossy lobe below the gather threshold: direct light by a shadow ray, MIS-weighted
-      // against the BSDF sample that continues the path (unweighted on the last vertex).
-      const bool last = depth + 1 >= settings_.max_depth;
-      L += beta * estimate_direct(scene, hit, wo, sampler, last ? 0.0f : 1.0f);
-      if (last) break;
-    }
+    // A glossy lobe below the gather threshold: direct light by a shadow ray, MIS-weighted
+    // against the BSDF sample that continues the path.
+    if (!m.is_specular()) L += beta * estimate_direct(scene, hit, wo, sampler, 1.0f);
     BsdfSample bs;
     const Vec2 u = sampler.next2d();
     if (!m.sample(wo_l, u, sampler.next1d(), bs, hit.sp)) break;
@@ -278,13 +316,20 @@ std::string PhotonIntegrator::describe() const {
   const size_t ng = global_.size(), nc = caustic_.size();
   s << "photons (global, wanted): " << settings_.photons << "\n";
   if (final_gather_) s << "caustic photons (wanted): " << settings_.caustic_photons << "\n";
-  s << "global map: " << ng << " stored of " << stats_.global_emitted << " emitted, k " << global_est_.k
-    << ", max radius " << global_est_.max_radius << "\n";
+  s << "global map: " << ng << " stored, k " << global_est_.k << ", max radius " << global_est_.max_radius << "\n";
   if (final_gather_) {
-    s << "caustic map: " << nc << " stored of " << stats_.caustic_emitted << " emitted, k " << caustic_est_.k
-      << ", max radius " << caustic_est_.max_radius << ", cone filter k " << caustic_est_.cone_k << "\n";
+    s << "caustic map: " << nc << " stored, k " << caustic_est_.k << ", max radius " << caustic_est_.max_radius << ", cone filter k " << caustic_est_.cone_k << "\n";
     s << "gather rays: " << settings_.gather_rays << "\ndirect samples: " << settings_.direct_samples << "\n";
     s << "precomputed irradiance: " << (settings_.irradiance_stride > 0 ? "every " + std::to_string(settings_.irradiance_stride) + "th global photon (" + std::to_string(irradiance_.size()) + " points)" : std::string("off")) << "\n";
+  }
+  if (settings_.progressive) {
+    s << "progressive: " << stats_.passes << " photon passes (maps above: the last), alpha " << settings_.alpha
+      << ", first radii " << global_r1_ << " (global), " << caustic_r1_ << " (caustic)\n";
+    s << "photons emitted, all passes: " << stats_.global_emitted << " (global), " << stats_.caustic_emitted
+      << " (caustic)\n";
+  } else {
+    s << "progressive: no\nphotons emitted: " << stats_.global_emitted << " (global), " << stats_.caustic_emitted
+      << " (caustic)\n";
   }
   s << "max_depth: " << settings_.max_depth << "\n";
   s << "photon pass time: " << stats_.photon_seconds << " s\n";

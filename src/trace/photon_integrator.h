@@ -21,13 +21,18 @@ struct PhotonSettings {
   float glossy_threshold = 0.3f;
   int max_depth = 16;        // from the render block
   bool hide_emitters = false;  // directly visible emitters (and the environment) render black
+  // Progressive photon mapping (Knaus and Zwicker 2011): every pass traces fresh maps of the
+  // counts above and estimates within fixed radii that shrink as r_i^2 = r_1^2 prod (j + alpha) / (j + 1).
+  bool progressive = false;
+  float alpha = 2.0f / 3.0f;
 
   // Reads and validates the integrator block; unknown keys are errors.
   static PhotonSettings read(const JsonSource& src, const RenderSettings& render, bool final_gather);
 };
 
 struct PhotonStats {
-  double photon_seconds = 0, build_seconds = 0, irradiance_seconds = 0;
+  double photon_seconds = 0, build_seconds = 0, irradiance_seconds = 0;  // summed over passes
+  int passes = 0;  // photon passes traced
   uint64_t global_emitted = 0, caustic_emitted = 0;
   size_t global_bytes = 0, caustic_bytes = 0, irradiance_bytes = 0;
 };
@@ -36,6 +41,8 @@ class PhotonIntegrator final : public Integrator {
  public:
   PhotonIntegrator(const JsonSource& settings, const RenderSettings& render, bool final_gather);
   void preprocess(const Scene& scene, const PreprocessContext& context) override;
+  bool progressive() const override { return settings_.progressive; }
+  bool begin_pass(const Scene& scene, int pass, const PreprocessContext& context) override;
   Color Li(const Ray& ray, const Scene& scene, Sampler& sampler) const override;
   std::string name() const override { return final_gather_ ? "photon" : "photon-direct"; }
   std::string describe() const override;
@@ -49,14 +56,26 @@ class PhotonIntegrator final : public Integrator {
   const EstimateSettings& caustic_estimate() const { return caustic_est_; }
 
  private:
-  // Final gathering by BSDF samples; with skip_delta, samples of delta lobes count 0.
+  // Traces and builds the maps with `seed`; false when cancelled.
+  bool build_maps(const Scene& scene, uint64_t seed, const PreprocessContext& context);
+  // Precomputes irradiance on the global map with the current radii.
+  void build_irradiance();
+  // Final gathering by BSDF samples from eye vertex `depth`; with skip_delta, samples of delta
+  // lobes count 0.
   Color final_gather(const Scene& scene, const SurfaceHit& hit, const Vec3& wo, Sampler& sampler,
-                     std::vector<Neighbour>& scratch, bool skip_delta) const;
+                     std::vector<Neighbour>& scratch, bool skip_delta, int depth) const;
   // Camera paths split at the first kSplitLevels glass surfaces into reflection and refraction.
   static constexpr int kSplitLevels = 2;
   Color trace_eye(const Ray& ray, const Scene& scene, Sampler& sampler, int depth, int splits_left) const;
   void record_aov(const SurfaceHit& hit, const Vec3& wo, float* aov, std::vector<Neighbour>& scratch) const;
-  Color indirect_at(const SurfaceHit& hit, const Vec3& wo, std::vector<Neighbour>& scratch) const;
+  // The global map's estimate at eye vertex `depth`.
+  Color indirect_at(const SurfaceHit& hit, const Vec3& wo, std::vector<Neighbour>& scratch, int depth) const;
+  // The estimate settings for eye vertex `depth` (0: the camera ray's hit): photons of at most
+  // max_depth - 1 - depth bounces, so that the joined path has at most max_depth + 1 segments,
+  // as a `path` path has.
+  EstimateSettings at_depth(const EstimateSettings& s, int depth) const {
+    return with_bounces(s, 0, settings_.max_depth - 1 - depth);
+  }
 
   // BSDF (gather) samples per shadow-ray sample at a gather point, for MIS; 0 without gathering.
   float gather_ratio() const {
@@ -68,6 +87,7 @@ class PhotonIntegrator final : public Integrator {
   PhotonMap global_, caustic_;
   IrradianceCache irradiance_;
   EstimateSettings global_est_, caustic_est_;
+  float global_r1_ = 0, caustic_r1_ = 0;  // progressive: the first pass's radii
   std::vector<std::string> warnings_;
 };
 

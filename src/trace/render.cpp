@@ -21,7 +21,7 @@ Vec2 pixel_jitter(uint64_t pixel, uint64_t sample, uint64_t seed) {
   return Vec2(float(x - std::floor(x)), float(y - std::floor(y)));
 }
 
-Image render_image(const Scene& scene, const Integrator& integrator, const RenderOptions& options,
+Image render_image(const Scene& scene, Integrator& integrator, const RenderOptions& options,
                    RenderStats& stats, std::vector<Image>* aovs) {
   const int w = scene.camera.width(), h = scene.camera.height();
   const int ts = options.tile_size;
@@ -57,6 +57,7 @@ Image render_image(const Scene& scene, const Integrator& integrator, const Rende
           // pixels as the whole film.
           const uint64_t film_pixel = uint64_t(y + crop_y) * film_w + uint64_t(x + crop_x);
           Sampler sampler(hash_seed(film_pixel, uint64_t(pass), options.seed));
+          sampler.pixel = pixel;
           float aov[kA] = {};
           if (want_aov) sampler.aov = aov;
           Vec2 jitter = pixel_jitter(film_pixel, uint64_t(pass), options.seed);
@@ -88,10 +89,13 @@ Image render_image(const Scene& scene, const Integrator& integrator, const Rende
     if (options.on_pass) {
       Image mean(w, h);
       for (size_t i = 0; i < sum.size(); ++i) mean.pixels[i] = Color(sum[i] / double(passes));
+      integrator.resolve(mean, pixel_passes);
       options.on_pass(passes, elapsed(), mean);
     }
   };
-  if (!timed && !options.on_pass) {
+  const bool progressive = integrator.progressive();
+  const PreprocessContext pass_context{options.seed, options.quiet, options.cancel};
+  if (!timed && !options.on_pass && !progressive) {
     // A fixed pass count: each tile runs a group of passes, with a barrier only between groups
     // (an interrupted render keeps every finished pass; all tiles have started the group).
     constexpr int kGroup = 8;
@@ -109,6 +113,11 @@ Image render_image(const Scene& scene, const Integrator& integrator, const Rende
       if (timed && pass > 0) {
         const double t = elapsed();
         if (t + t / pass > options.time_limit) break;  // the next pass would overrun the budget
+      }
+      if (progressive && !integrator.begin_pass(scene, pass, pass_context)) {
+        stats.interrupted = true;
+        stats.passes = pass;
+        break;
       }
       tbb::parallel_for(tbb::blocked_range<int>(0, tile_count), [&](const tbb::blocked_range<int>& range) {
         for (int tile = range.begin(); tile != range.end(); ++tile) render_tile(tile, pass, pass + 1);
@@ -140,6 +149,7 @@ Image render_image(const Scene& scene, const Integrator& integrator, const Rende
       (*aovs)[1].pixels[i] = Color(aov_sum[i * kA + 2], aov_sum[i * kA + 3], 0.0f) * float(inv);
     }
   }
+  integrator.resolve(image, pixel_passes);
   return image;
 }
 

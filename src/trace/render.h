@@ -34,7 +34,7 @@ Vec2 pixel_jitter(uint64_t pixel, uint64_t sample, uint64_t seed);
 
 // With options.aov, `aovs` receives the per-pixel mean of the AOVs: two images, the first
 // holding Sampler::aov[0..1] in red and green, the second aov[2..3].
-Image render_image(const Scene& scene, const Integrator& integrator, const RenderOptions& options,
+Image render_image(const Scene& scene, Integrator& integrator, const RenderOptions& options,
                    RenderStats& stats, std::vector<Image>* aovs = nullptr);
 
 }  // namespace caustica
