@@ -31,6 +31,8 @@ constexpr PhotonFlag kPhotonFlags[] = {
     {"--direct-samples", "direct_samples", "Shadow-ray samples per first diffuse hit", false},
     {"--irradiance-stride", "irradiance_stride", "Precompute irradiance at every n-th global photon (0: off)", false},
     {"--glossy-threshold", "glossy_threshold", "Store photons and gather on glossy lobes at least this rough (alpha)", true},
+    {"--alpha", "alpha", "Progressive photon mapping and sppm: radius reduction, in (0, 1) (default 2/3)", true},
+    {"--radius", "radius", "sppm: first radius of every pixel (scene units)", true},
 };
 constexpr size_t kPhotonFlagCount = sizeof(kPhotonFlags) / sizeof(kPhotonFlags[0]);
 
@@ -40,6 +42,7 @@ struct SceneFlags {
   double photon_values[kPhotonFlagCount] = {};
   CLI::Option* photon_options[kPhotonFlagCount] = {};
   std::vector<std::string> defines;
+  bool progressive = false, no_progressive = false;
 
   void add(CLI::App* cmd, SceneOptions& o, bool with_spp) {
     options = &o;
@@ -64,9 +67,16 @@ struct SceneFlags {
                               ->group("Photon mapping")
                               ->check(CLI::NonNegativeNumber);
     }
+    auto* on = cmd->add_flag("--progressive", progressive,
+                             "photon: fresh photon maps every pass, radii shrinking (consistent)")
+                   ->group("Photon mapping");
+    cmd->add_flag("--no-progressive", no_progressive, "photon: one pair of photon maps for all passes")
+        ->group("Photon mapping")
+        ->excludes(on);
   }
   // Moves the photon flags given into options->integrator_overrides, and -D into the Mitsuba options.
   void collect() const {
+    if (progressive || no_progressive) options->integrator_overrides.emplace_back("progressive", progressive);
     for (const std::string& d : defines) {
       const size_t eq = d.find('=');
       if (eq == std::string::npos || eq == 0) throw InputError("-D " + d + ": expected name=value");

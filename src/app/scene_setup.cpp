@@ -31,8 +31,27 @@ LoadedScene load_scene_with(const SceneOptions& options) {
   return loaded;
 }
 
-std::unique_ptr<Integrator> integrator_for(const Scene& scene, const std::string& requested, const SceneOptions& options,
+std::unique_ptr<Integrator> integrator_for(const Scene& scene, const std::string& spec, const SceneOptions& options,
                                            bool lenient) {
+  // "type:key=value:key=value": settings given with the name (converge compares variants).
+  std::string requested = spec;
+  std::vector<std::pair<std::string, nlohmann::json>> spec_settings;
+  if (const size_t colon = spec.find(':'); colon != std::string::npos) {
+    requested = spec.substr(0, colon);
+    size_t at = colon + 1;
+    while (at <= spec.size()) {
+      const size_t end = std::min(spec.find(':', at), spec.size());
+      const std::string item = spec.substr(at, end - at);
+      const size_t eq = item.find('=');
+      if (eq == std::string::npos || eq == 0 || eq + 1 == item.size()) {
+        throw InputError("integrator \"" + spec + "\": expected TYPE:KEY=VALUE, not \"" + item + "\"");
+      }
+      nlohmann::json value = nlohmann::json::parse(item.substr(eq + 1), nullptr, false);
+      if (value.is_discarded()) value = item.substr(eq + 1);  // a bare word is a string
+      spec_settings.emplace_back(item.substr(0, eq), value);
+      at = end + 1;
+    }
+  }
   std::string type = scene.integrator_type;
   JsonSource settings = scene.integrator_settings;
   if (!requested.empty() && requested != type) {
@@ -48,12 +67,19 @@ std::unique_ptr<Integrator> integrator_for(const Scene& scene, const std::string
     std::string flag = "--" + kv.first;
     std::replace(flag.begin(), flag.end(), '_', '-');
     const bool gather_only = kv.first == "gather_rays" || kv.first == "direct_samples" || kv.first == "irradiance_stride";
-    if ((type != "photon" && type != "photon-direct") || (type == "photon-direct" && gather_only)) {
+    const bool sppm_key = kv.first == "photons" || kv.first == "alpha" || kv.first == "glossy_threshold";
+    const bool applies = type == "sppm" ? sppm_key || kv.first == "radius"
+                       : type == "photon" ? kv.first != "radius"
+                       : type == "photon-direct" ? kv.first != "radius" && !gather_only
+                       : false;
+    if (!applies) {
       if (lenient) continue;
       throw InputError(flag + " does not apply to integrator \"" + type + "\"");
     }
     settings.value[kv.first] = kv.second;
   }
+  // Unknown keys given with the name are errors of the integrator's own settings check.
+  for (const auto& kv : spec_settings) settings.value[kv.first] = kv.second;
   return create_integrator(type, settings, scene.render);
 }
 

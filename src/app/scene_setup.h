@@ -26,7 +26,8 @@ struct SceneOptions {
 // Loads the scene (warnings to stderr) and applies the command line's render settings.
 LoadedScene load_scene_with(const SceneOptions& options);
 
-// Creates `type` (empty: the scene's integrator). The scene's integrator settings apply when
+// Creates `type` (empty: the scene's integrator), which may carry settings:
+// "photon:progressive=false:photons=50000" (values are JSON; a bare word is a string). The scene's integrator settings apply when
 // the type is the scene's own; the overrides apply on top. With `lenient`, photon flags are
 // skipped for integrators they do not apply to (converge compares several at once).
 std::unique_ptr<Integrator> integrator_for(const Scene& scene, const std::string& type, const SceneOptions& options,

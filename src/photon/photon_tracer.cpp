@@ -2,7 +2,11 @@
 #include "photon/photon_tracer.h"
 #include <algorithm>
 #include <chrono>
+#include <iomanip>
+#include <sstream>
+#include <unistd.h>
 #include <tbb/parallel_for.h>
+#include "core/json_reader.h"
 #include "core/sampler.h"
 
 namespace caustica {
@@ -252,6 +256,21 @@ std::vector<Photon> run_map(const Scene& scene, const PhotonPassSettings& s, boo
 }
 
 }  // namespace
+
+// Refuses up front a photon count whose maps would not fit in this machine's memory.
+void check_photon_memory(size_t photons) {
+  // While tracing: a pending record (position, float flux, directions) and the final record;
+  // then the kd-tree index and the precomputed-irradiance points.
+  const double bytes_per_photon = 52.0 + sizeof(Photon) + 8.0 + 0.25 * (sizeof(Photon) + 8.0);
+  const double need = double(photons) * bytes_per_photon;
+  const double have = double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGE_SIZE));
+  if (have > 0 && need > 0.8 * have) {
+    std::ostringstream m;
+    m << std::fixed << std::setprecision(1) << photons << " photons would need about " << need / (1 << 30)
+      << " GiB of memory; this machine has " << have / (1 << 30) << " GiB (use fewer photons)";
+    throw InputError(m.str());
+  }
+}
 
 PhotonPassResult trace_photons(const Scene& scene, const PhotonPassSettings& settings) {
   const auto t0 = std::chrono::steady_clock::now();

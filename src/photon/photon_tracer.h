@@ -35,4 +35,7 @@ struct PhotonPassResult {
 // Photon i is seeded from hash(i, seed): the maps are the same for any thread count.
 PhotonPassResult trace_photons(const Scene& scene, const PhotonPassSettings& settings);
 
+// Throws InputError when maps of this many photons would not fit in this machine's memory.
+void check_photon_memory(size_t photons);
+
 }  // namespace caustica

@@ -3,6 +3,7 @@
 #include <functional>
 #include "trace/path.h"
 #include "trace/photon_integrator.h"
+#include "trace/sppm.h"
 #include "trace/whitted.h"
 
 namespace caustica {
@@ -15,6 +16,7 @@ const std::vector<std::pair<std::string, Maker>>& table() {
       {"path", [](const JsonSource& s, const RenderSettings& r) { return std::make_unique<PathIntegrator>(s, r); }},
       {"photon", [](const JsonSource& s, const RenderSettings& r) { return std::make_unique<PhotonIntegrator>(s, r, true); }},
       {"photon-direct", [](const JsonSource& s, const RenderSettings& r) { return std::make_unique<PhotonIntegrator>(s, r, false); }},
+      {"sppm", [](const JsonSource& s, const RenderSettings& r) { return std::make_unique<SppmIntegrator>(s, r); }},
       {"whitted", [](const JsonSource& s, const RenderSettings& r) { return std::make_unique<WhittedIntegrator>(s, r); }},
   };
   return t;

@@ -3,7 +3,7 @@
 // BSDF sample weighted against it; after a delta bounce emission counts fully.
 #include "trace/path.h"
 #include <sstream>
-#include "trace/direct.h"
+#include "trace/eye_path.h"
 
 namespace caustica {
 
@@ -20,41 +20,23 @@ PathIntegrator::PathIntegrator(const JsonSource& settings, const RenderSettings&
 }
 
 Color PathIntegrator::Li(const Ray& camera_ray, const Scene& scene, Sampler& sampler) const {
-  Color L(0.0f), beta(1.0f);
+  EyePath path{Color(0.0f), Color(1.0f), BsdfVertex{}, settings_.max_depth, settings_.hide_emitters};
   Ray ray = camera_ray;
-  BsdfVertex from;  // the camera counts emission fully, as a delta bounce does
-  // Paths have at most max_depth + 1 segments (Mitsuba's max_depth counts them): the segment
-  // leaving vertex max_depth is traced for the emission it reaches, and ends the path there.
-  for (int depth = 0; depth <= settings_.max_depth; ++depth) {
+  for (int depth = 0;; ++depth) {
     SurfaceHit hit;
-    ++sampler.rays;
-    // Mitsuba's hide_emitters: what the camera sees directly of lights renders black.
-    const bool visible = !(settings_.hide_emitters && depth == 0);
-    if (!scene.intersect(ray, hit)) {
-      if (visible) L += beta * escaped_mis(scene, ray.dir, from);
-      break;
-    }
+    if (!path.meet(scene, ray, depth, sampler, hit)) break;
     const Vec3 wo = -ray.dir;
-    const Vec3 wo_l = hit.frame.to_local(wo);
-    const Material& m = *hit.material;
-    if (visible) L += beta * emission_mis(scene, hit, m.emitted(wo_l), from);
-    if (depth == settings_.max_depth) break;
-    if (!m.is_specular()) L += beta * estimate_direct(scene, hit, wo, sampler, 1.0f);
-    BsdfSample bs;
-    const Vec2 u = sampler.next2d();
-    if (!m.sample(wo_l, u, sampler.next1d(), bs, hit.sp)) break;
-    const Vec3 wi = hit.frame.to_world(bs.wi);
-    if (hit.leaks(wi)) break;
-    beta *= bs.weight;
-    from = BsdfVertex{bs.delta, bs.pdf, hit.p};
+    // Every vertex's shadow ray is weighted against its BSDF sample, which counts the emission
+    // it reaches (on the last vertex too: see EyePath::meet).
+    if (!hit.material->is_specular()) path.L += path.beta * estimate_direct(scene, hit, wo, sampler, 1.0f);
+    if (!path.scatter(hit, wo, sampler, ray)) break;
     if (depth + 1 >= settings_.rr_depth) {
-      const float survive = std::min(1.0f, max_component(beta));
+      const float survive = std::min(1.0f, max_component(path.beta));
       if (survive <= 0.0f || sampler.next1d() >= survive) break;
-      beta /= survive;
+      path.beta /= survive;
     }
-    ray = spawn_ray(hit.p, hit.n, wi);
   }
-  return L;
+  return path.L;
 }
 
 std::string PathIntegrator::describe() const {

@@ -4,11 +4,10 @@
 #include <algorithm>
 #include <chrono>
 #include <iomanip>
-#include <unistd.h>
 #include <iostream>
 #include <sstream>
 #include "photon/photon_tracer.h"
-#include "trace/direct.h"
+#include "trace/eye_path.h"
 
 namespace caustica {
 namespace {
@@ -55,26 +54,11 @@ PhotonSettings PhotonSettings::read(const JsonSource& src, const RenderSettings&
   return s;
 }
 
-// Refuses up front a photon count whose maps would not fit in this machine's memory.
-static void check_memory(size_t photons) {
-  // While tracing: a pending record (position, float flux, directions) and the final record;
-  // then the kd-tree index and the precomputed-irradiance points.
-  const double bytes_per_photon = 52.0 + sizeof(Photon) + 8.0 + 0.25 * (sizeof(Photon) + 8.0);
-  const double need = double(photons) * bytes_per_photon;
-  const double have = double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGE_SIZE));
-  if (have > 0 && need > 0.8 * have) {
-    std::ostringstream m;
-    m << std::fixed << std::setprecision(1) << photons << " photons would need about " << need / (1 << 30)
-      << " GiB of memory; this machine has " << have / (1 << 30) << " GiB (use fewer photons)";
-    throw InputError(m.str());
-  }
-}
-
 PhotonIntegrator::PhotonIntegrator(const JsonSource& settings, const RenderSettings& render, bool final_gather)
     : final_gather_(final_gather), settings_(PhotonSettings::read(settings, render, final_gather)) {}
 
 void PhotonIntegrator::preprocess(const Scene& scene, const PreprocessContext& context) {
-  check_memory(settings_.photons + (final_gather_ ? settings_.caustic_photons : 0));
+  check_photon_memory(settings_.photons + (final_gather_ ? settings_.caustic_photons : 0));
   global_est_.k = size_t(settings_.global_k);
   caustic_est_.k = size_t(settings_.caustic_k);
   caustic_est_.cone_filter = true;
@@ -237,26 +221,18 @@ Color PhotonIntegrator::Li(const Ray& camera_ray, const Scene& scene, Sampler& s
 Color PhotonIntegrator::trace_eye(const Ray& start, const Scene& scene, Sampler& sampler, int depth,
                                   int splits_left) const {
   std::vector<Neighbour>& scratch = tls_scratch;
-  Color L(0.0f), beta(1.0f);
-  Ray ray = start;
   // Emission and the environment count in full after the camera and delta bounces; after a
   // near-specular glossy bounce they are weighted against that vertex's shadow ray (MIS).
-  BsdfVertex from;
-  // As in `path`: at most max_depth + 1 segments; the last only for the emission it reaches.
-  for (; depth <= settings_.max_depth; ++depth) {
+  EyePath path{Color(0.0f), Color(1.0f), BsdfVertex{}, settings_.max_depth, settings_.hide_emitters};
+  Color& L = path.L;
+  const Color& beta = path.beta;
+  Ray ray = start;
+  for (;; ++depth) {
     SurfaceHit hit;
-    ++sampler.rays;
-    // Mitsuba's hide_emitters: what the camera sees directly of lights renders black.
-    const bool visible = !(settings_.hide_emitters && depth == 0);
-    if (!scene.intersect(ray, hit)) {
-      if (visible) L += beta * escaped_mis(scene, ray.dir, from);
-      break;
-    }
+    if (!path.meet(scene, ray, depth, sampler, hit)) break;
     const Vec3 wo = -ray.dir;
     const Vec3 wo_l = hit.frame.to_local(wo);
     const Material& m = *hit.material;
-    if (visible) L += beta * emission_mis(scene, hit, m.emitted(wo_l), from);
-    if (depth == settings_.max_depth) break;
     if (is_gather_surface(m, settings_.glossy_threshold)) {
       if (sampler.aov) record_aov(hit, wo, sampler.aov, scratch);
       if (!final_gather_) return L + beta * radiance_estimate(global_, hit, wo, at_depth(global_est_, depth), scratch);
@@ -299,14 +275,7 @@ Color PhotonIntegrator::trace_eye(const Ray& start, const Scene& scene, Sampler&
     // A glossy lobe below the gather threshold: direct light by a shadow ray, MIS-weighted
     // against the BSDF sample that continues the path.
     if (!m.is_specular()) L += beta * estimate_direct(scene, hit, wo, sampler, 1.0f);
-    BsdfSample bs;
-    const Vec2 u = sampler.next2d();
-    if (!m.sample(wo_l, u, sampler.next1d(), bs, hit.sp)) break;
-    const Vec3 wi = hit.frame.to_world(bs.wi);
-    if (hit.leaks(wi)) break;
-    beta *= bs.weight;
-    from = BsdfVertex{bs.delta, bs.pdf, hit.p};
-    ray = spawn_ray(hit.p, hit.n, wi);
+    if (!path.scatter(hit, wo, sampler, ray)) break;
   }
   return L;
 }

@@ -1,0 +1,61 @@
+// Stochastic progressive photon mapping (Hachisuka and Jensen 2009), as in pbrt: per pass, a
+// fresh photon map, one visible point per pixel and per-pixel photon statistics whose radius
+// shrinks; consistent, and the method users compare against.
+#pragma once
+#include <vector>
+#include "photon/density.h"
+#include "photon/photon_map.h"
+#include "trace/integrator.h"
+
+namespace caustica {
+
+struct SppmSettings {
+  size_t photons = 100000;  // stored per pass
+  float radius = 0;         // first radius of every pixel; 0: an even spread's disc of 50 photons
+  float alpha = 2.0f / 3.0f;  // fraction of a pass's photons kept in the statistics
+  float glossy_threshold = 0.3f;  // as `photon`: where photons are stored and eye paths stop
+  int max_depth = 16;       // from the render block
+  bool hide_emitters = false;
+
+  static SppmSettings read(const JsonSource& src, const RenderSettings& render);
+};
+
+// One pixel's statistics (pbrt-v3's SPPMPixel): radius, photon count N, and flux tau.
+struct SppmPixel {
+  float radius = 0;
+  double n = 0;
+  glm::dvec3 tau{0.0};
+  // Adds a pass's M photons with BSDF-weighted flux phi (beta included): N += alpha M, the
+  // radius shrinks by sqrt(N_new / (N + M)) and tau keeps the flux inside the new radius.
+  void add_pass(size_t m, const Color& phi, float alpha);
+};
+
+class SppmIntegrator final : public Integrator {
+ public:
+  SppmIntegrator(const JsonSource& settings, const RenderSettings& render);
+  void preprocess(const Scene& scene, const PreprocessContext& context) override;
+  bool progressive() const override { return true; }
+  bool begin_pass(const Scene& scene, int pass, const PreprocessContext& context) override;
+  // Per-pass radiance: emission and direct light at the visible point. Updates the pixel's
+  // photon statistics (the render loop visits each pixel once per pass, on one thread).
+  Color Li(const Ray& ray, const Scene& scene, Sampler& sampler) const override;
+  // Adds the photon estimate tau / (passes pi r^2) to each pixel.
+  void resolve(Image& mean, const std::vector<int>& pixel_passes) const override;
+  std::string name() const override { return "sppm"; }
+  std::string describe() const override;
+
+  const SppmSettings& settings() const { return settings_; }
+  const std::vector<SppmPixel>& pixels() const { return pixels_; }
+
+ private:
+  SppmSettings settings_;
+  float radius0_ = 0;
+  PhotonMap map_;
+  int passes_ = 0;
+  double photon_seconds_ = 0;
+  uint64_t emitted_ = 0;
+  std::vector<std::string> warnings_;
+  mutable std::vector<SppmPixel> pixels_;
+};
+
+}  // namespace caustica
