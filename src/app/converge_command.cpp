@@ -1,6 +1,7 @@
 // `caustica converge`.
 #include "app/converge_command.h"
 #include <algorithm>
+#include <cmath>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -120,12 +121,22 @@ int run_converge(const ConvergeArgs& args) {
     const double total = pre + stats.seconds;
     if (series.points.empty() || series.points.back().passes != stats.passes) record(total, stats.passes, image);
     report.series.push_back(series);
-    const std::string stem = (fs::path(args.out_dir) / name).string();
+    if (const double slope = convergence_slope(series); std::isfinite(slope)) {
+      std::ostringstream rate;
+      rate << "relMSE ~ t^" << std::fixed << std::setprecision(2) << slope << " from " << std::setprecision(1)
+           << 0.25 * total << " s on" << (slope > -0.2 ? " (flattening: a bias floor)" : "");
+      report.facts.emplace_back(name + " rate", rate.str());
+      if (!args.common.quiet) std::cerr << name << ": " << rate.str() << "\n";
+    }
+    // Variants such as photon:progressive=false get file names without ':' and '='.
+    std::string file = name;
+    std::replace_if(file.begin(), file.end(), [](char c) { return c == ':' || c == '=' || c == '/'; }, '_');
+    const std::string stem = (fs::path(args.out_dir) / file).string();
     write_image(stem + ".exr", image);
     write_image(stem + ".png", image);
     write_image(stem + "-error.png", error_map(image, reference));
-    report.images.push_back({name, name + ".png"});
-    error_images.push_back({name + " error", name + "-error.png"});
+    report.images.push_back({name, file + ".png"});
+    error_images.push_back({name + " error", file + "-error.png"});
     report.facts.emplace_back(name, std::to_string(stats.passes) + " passes in " + std::to_string(total) + " s (" +
                                         std::to_string(pre) + " s preprocess)");
   }

@@ -281,6 +281,13 @@ std::string decade_label(int k) {
   return "10<tspan dy=\"-6\" font-size=\"9\">" + std::to_string(k) + "</tspan>";
 }
 
+// The legend's and the table's name of a series, with its late convergence rate.
+std::string series_label(const ReportSeries& s) {
+  const double slope = convergence_slope(s);
+  if (!std::isfinite(slope)) return s.integrator;
+  return s.integrator + format(" (t^%.2f", slope) + (slope > -0.2 ? ", flattening)" : ")");
+}
+
 std::string plot_svg(const std::vector<ReportSeries>& series) {
   static const char* colors[] = {"#4e79a7", "#e15759", "#59a14f", "#f28e2b", "#b07aa1", "#76b7b2", "#edc948", "#9c755f"};
   const double W = 560, H = 380, L = 64, R = 16, T = 16, B = 48, pw = W - L - R, ph = H - T - B;
@@ -328,7 +335,7 @@ std::string plot_svg(const std::vector<ReportSeries>& series) {
   std::string legend;
   int drawn = 0;
   size_t longest = 0;
-  for (const ReportSeries& s : series) longest = std::max(longest, s.integrator.size());
+  for (const ReportSeries& s : series) longest = std::max(longest, series_label(s).size());
   const double lw = 46 + 7.5 * double(longest), lx = L + pw - lw - 8;
   for (const ReportSeries& s : series) {
     std::string points, markers;
@@ -347,7 +354,7 @@ std::string plot_svg(const std::vector<ReportSeries>& series) {
     legend += format("<line x1=\"%g\"", lx + 8) + format(" x2=\"%g\"", lx + 30) + format(" y1=\"%g\"", ly) +
               format(" y2=\"%g\" stroke-width=\"2\" stroke=\"", ly) + color + "\"/>" +
               format("<circle cx=\"%g\"", lx + 19) + format(" cy=\"%g\" r=\"3.5\" fill=\"", ly) + color + "\"/>" +
-              format("<text x=\"%g\"", lx + 36) + format(" y=\"%g\" dy=\"4\">", ly) + html_escape(s.integrator) +
+              format("<text x=\"%g\"", lx + 36) + format(" y=\"%g\" dy=\"4\">", ly) + html_escape(series_label(s)) +
               "</text>\n";
     ++drawn;
   }
@@ -374,6 +381,22 @@ void write_atomically(const fs::path& target, const std::string& text) {
 }
 
 }  // namespace
+
+double convergence_slope(const ReportSeries& series) {
+  double last = 0;
+  for (const ReportPoint& p : series.points) {
+    if (plottable(p)) last = std::max(last, p.seconds);
+  }
+  double n = 0, sx = 0, sy = 0, sxx = 0, sxy = 0;
+  for (const ReportPoint& p : series.points) {
+    if (!plottable(p) || p.seconds < 0.25 * last) continue;
+    const double x = std::log(p.seconds), y = std::log(p.relmse);
+    n += 1, sx += x, sy += y, sxx += x * x, sxy += x * y;
+  }
+  const double d = n * sxx - sx * sx;
+  if (n < 2 || !(d > 1e-12)) return std::nan("");
+  return (n * sxy - sx * sy) / d;
+}
 
 void write_report(const std::string& dir, const ReportData& data) {
   std::error_code ec;

@@ -30,6 +30,11 @@ struct ReportData {
   std::vector<ReportSeries> series;
 };
 
+// How fast a series still converges: the least-squares slope of log relMSE against log time
+// over its points from a quarter of its last time on (relMSE ~ t^slope; -1 for pure noise,
+// near 0 where a bias floor is reached). NaN with fewer than two such points.
+double convergence_slope(const ReportSeries& series);
+
 // Writes DIR/index.html: opens from the file system with no server and no network.
 // Throws InputError when the folder cannot be written.
 void write_report(const std::string& dir, const ReportData& data);

@@ -7,20 +7,28 @@ namespace caustica {
 
 namespace {
 // Shared by both estimates: gathers, filters and sums weight(photon) * power / area.
+// With levels > 0, level_sums[l] also receives the estimate of the narrower bounce window
+// min_bounces..max_bounces - l, for l < levels (level 0 is the returned estimate).
 template <class Weight>
 Color gather(const PhotonMap& map, const Vec3& p, const Vec3& n_side, const EstimateSettings& s,
-             std::vector<Neighbour>& scratch, EstimateInfo* info, Weight weight_of) {
+             std::vector<Neighbour>& scratch, EstimateInfo* info, Weight weight_of, Color* level_sums = nullptr,
+             int levels = 0) {
+  for (int l = 0; l < levels; ++l) level_sums[l] = Color(0.0f);
   const size_t found = s.fixed_radius ? map.radius_query(p, s.max_radius, scratch)
                                       : map.knn(p, s.k, s.max_radius, scratch);
   if (info) *info = EstimateInfo{};
   if (found == 0) return Color(0.0f);
   // Fewer than k photons within max_radius: the disc is the whole search radius.
-  const float r2 = s.fixed_radius || found < s.k ? s.max_radius * s.max_radius : scratch.back().dist2;
+  const float r2_disc = s.fixed_radius || found < s.k ? s.max_radius * s.max_radius : scratch.back().dist2;
+  // Progressive passes shrink the disc by a factor; the photons beyond it drop out.
+  const bool shrunk = s.radius2_scale < 1.0f;
+  const float r2 = shrunk ? r2_disc * s.radius2_scale : r2_disc;
   if (!(r2 > 0.0f)) return Color(0.0f);
   const float r = std::sqrt(r2);
   Color sum(0.0f);
   size_t used = 0;
   for (const Neighbour& nb : scratch) {
+    if (shrunk && nb.dist2 >= r2) continue;
     const Photon& ph = map[nb.index];
     if (int(ph.bounces) < s.min_bounces || int(ph.bounces) > s.max_bounces) continue;
     const Vec3 wi = ph.incoming_dir();
@@ -29,10 +37,13 @@ Color gather(const PhotonMap& map, const Vec3& p, const Vec3& n_side, const Esti
     if (s.cone_filter) c *= 1.0f - std::sqrt(nb.dist2) / (s.cone_k * r);
     sum += c;
     ++used;
+    for (int l = 1; l < std::min(levels, s.max_bounces - int(ph.bounces) + 1); ++l) level_sums[l] += c;
   }
   float area = kPi * r2;
   if (s.cone_filter) area *= 1.0f - 2.0f / (3.0f * s.cone_k);
   if (info) *info = EstimateInfo{used, r};
+  for (int l = 1; l < levels; ++l) level_sums[l] /= area;
+  if (levels > 0) level_sums[0] = sum / area;
   return sum / area;
 }
 }  // namespace
@@ -57,32 +68,46 @@ double progressive_radius2_scale(int pass, double alpha) {
   return scale;
 }
 
-void IrradianceCache::build(const PhotonMap& global, size_t stride, const EstimateSettings& s) {
+void IrradianceCache::build(const PhotonMap& global, size_t stride, const EstimateSettings& s, int levels) {
   settings_ = s;
+  levels_ = std::max(1, levels);
   stride = std::max<size_t>(1, stride);
   const size_t n = (global.size() + stride - 1) / stride;
-  std::vector<Color> irradiance(n);
+  const size_t L = size_t(levels_);
+  std::vector<Color> irradiance(n * L);
   tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 256), [&](const tbb::blocked_range<size_t>& range) {
     std::vector<Neighbour> scratch;
     for (size_t i = range.begin(); i != range.end(); ++i) {
       const Photon& ph = global[uint32_t(i * stride)];
-      irradiance[i] = irradiance_estimate(global, ph.position, ph.surface_normal(), s, scratch);
+      gather(global, ph.position, ph.surface_normal(), s, scratch, nullptr, [](const Vec3&) { return Color(1.0f); },
+             &irradiance[i * L], levels_);
     }
   });
   double mean = 0;
-  for (const Color& e : irradiance) mean += max_component(e);
+  for (size_t i = 0; i < n; ++i) mean += max_component(irradiance[i * L]);
   mean = n > 0 ? mean / double(n) : 1.0;
   if (!(mean > 0)) mean = 1.0;
   std::vector<Photon> points(n);
   for (size_t i = 0; i < n; ++i) {
     const Photon& ph = global[uint32_t(i * stride)];
     const Vec3 normal = ph.surface_normal();
-    points[i] = Photon::make(ph.position, irradiance[i] / float(mean), normal, normal, 0);
+    points[i] = Photon::make(ph.position, irradiance[i * L] / float(mean), normal, normal, 0);
   }
-  points_.build(std::move(points), float(mean), kLeafSize);
+  std::vector<uint32_t> order;
+  points_.build(std::move(points), float(mean), kLeafSize, &order);
+  // The narrower windows' irradiance, in the map's (Morton) order.
+  narrower_.assign(n * (L - 1), Color(0.0f));
+  for (size_t i = 0; i < n; ++i) {
+    for (size_t l = 1; l < L; ++l) narrower_[i * (L - 1) + l - 1] = irradiance[size_t(order[i]) * L + l];
+  }
 }
 
-bool IrradianceCache::lookup(const Vec3& p, const Vec3& n_side, float max_radius, Color& E,
+int IrradianceCache::level_for(const EstimateSettings& s) const {
+  const int l = settings_.max_bounces - s.max_bounces;
+  return s.min_bounces == settings_.min_bounces && l >= 0 && l < levels_ ? l : -1;
+}
+
+bool IrradianceCache::lookup(const Vec3& p, const Vec3& n_side, float max_radius, int level, Color& E,
                              std::vector<Neighbour>& scratch) const {
   // The nearest point nearly always lies on the same surface; look further only when not.
   for (size_t k : {size_t(1), size_t(8)}) {
@@ -90,7 +115,7 @@ bool IrradianceCache::lookup(const Vec3& p, const Vec3& n_side, float max_radius
     points_.knn(p, k, max_radius, scratch, 1.0f);
     for (const Neighbour& nb : scratch) {
       if (normals_agree(points_[nb.index].surface_normal(), n_side)) {
-        E = points_.power(nb.index);
+        E = level == 0 ? points_.power(nb.index) : narrower_[size_t(nb.index) * size_t(levels_ - 1) + size_t(level - 1)];
         return true;
       }
     }

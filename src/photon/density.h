@@ -12,8 +12,12 @@ struct EstimateSettings {
   float max_radius = 1.0f;   // search radius limit
   bool cone_filter = false;  // Jensen's cone filter, weight 1 - d / (cone_k r)
   float cone_k = 1.1f;
-  // Every photon within max_radius instead of the k nearest (progressive photon mapping).
+  // Every photon within max_radius instead of the k nearest (SPPM's per-pixel radius).
   bool fixed_radius = false;
+  // The disc found (k nearest, or max_radius) shrunk to this fraction of its area, counting the
+  // photons inside the smaller disc: progressive photon mapping's radius schedule applied to an
+  // adaptive first radius.
+  float radius2_scale = 1.0f;
   // Only photons stored after min_bounces..max_bounces bounces count (Photon::bounces), so
   // that a light path joined to an eye path stays within max_depth. The disc is still the
   // one the k nearest photons of any bounce count span: the estimate is of the subset's density.
@@ -49,22 +53,25 @@ Color irradiance_estimate(const PhotonMap& map, const Vec3& p, const Vec3& n_sid
 // Lookups read the nearest precomputed point whose normal agrees, instead of a k-NN estimate.
 class IrradianceCache {
  public:
-  // The points' irradiance counts the photons s admits (its bounce window included).
-  void build(const PhotonMap& global, size_t stride, const EstimateSettings& s);
-  // The bounce window the irradiance was computed for: lookups for another window must not use it.
-  bool serves(const EstimateSettings& s) const {
-    return s.min_bounces == settings_.min_bounces && s.max_bounces == settings_.max_bounces;
-  }
+  // The points' irradiance counts the photons s admits (its bounce window included), and, for
+  // levels l = 1 .. levels - 1, the photons of the narrower window min_bounces .. max_bounces - l
+  // (the gathers from deeper eye vertices): one k-NN search per point serves them all.
+  void build(const PhotonMap& global, size_t stride, const EstimateSettings& s, int levels = 1);
+  // The level that holds the irradiance of estimate settings s's bounce window, or -1.
+  int level_for(const EstimateSettings& s) const;
   // False when no precomputed point with an agreeing normal lies within max_radius.
-  bool lookup(const Vec3& p, const Vec3& n_side, float max_radius, Color& E, std::vector<Neighbour>& scratch) const;
+  bool lookup(const Vec3& p, const Vec3& n_side, float max_radius, int level, Color& E,
+              std::vector<Neighbour>& scratch) const;
   size_t size() const { return points_.size(); }
-  size_t memory_bytes() const { return points_.memory_bytes(); }
+  size_t memory_bytes() const { return points_.memory_bytes() + narrower_.capacity() * sizeof(Color); }
   // Lookups are 1-NN: small leaves beat the photon maps' 32 here (bench: BM_FinalGather).
   static constexpr size_t kLeafSize = 8;
 
  private:
   PhotonMap points_;  // records reused: power = irradiance, normal = surface normal
+  std::vector<Color> narrower_;  // levels - 1 per point, in points_'s order
   EstimateSettings settings_;
+  int levels_ = 1;
 };
 
 // Progressive photon mapping's radius schedule (Knaus and Zwicker 2011, eq. 14): the squared

@@ -119,7 +119,7 @@ uint64_t spread_bits(uint32_t v) {
 
 // Orders photons along a Morton curve: photons near in space become near in memory, which
 // roughly halves both the kd-tree build and the k-NN query time (see BENCHMARKS.md).
-void sort_spatially(std::vector<Photon>& photons) {
+void sort_spatially(std::vector<Photon>& photons, std::vector<uint32_t>* order) {
   Bounds b;
   for (const Photon& p : photons) b.extend(p.position);
   const Vec3 extent = glm::max(b.extent(), Vec3(1e-30f));
@@ -133,12 +133,16 @@ void sort_spatially(std::vector<Photon>& photons) {
   std::vector<Photon> sorted(photons.size());
   tbb::parallel_for(size_t(0), photons.size(), [&](size_t i) { sorted[i] = photons[keys[i].second]; });
   photons.swap(sorted);
+  if (order) {
+    order->resize(keys.size());
+    for (size_t i = 0; i < keys.size(); ++i) (*order)[i] = keys[i].second;
+  }
 }
 }  // namespace
 
-void PhotonMap::build(std::vector<Photon> photons, float flux_scale, size_t leaf_size) {
+void PhotonMap::build(std::vector<Photon> photons, float flux_scale, size_t leaf_size, std::vector<uint32_t>* order) {
   photons_ = std::move(photons);
-  sort_spatially(photons_);
+  sort_spatially(photons_, order);
   flux_scale_ = flux_scale;
   tree_ = std::make_unique<Tree>();
   if (photons_.empty()) return;

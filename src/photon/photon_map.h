@@ -20,8 +20,10 @@ class PhotonMap {
 
   // Takes the photons, orders them along a Morton curve (indices refer to that order) and
   // builds the kd-tree. leaf_size was tuned by bench/ (see BENCHMARKS.md).
-  // flux_scale multiplies every record's stored power (see Photon).
-  void build(std::vector<Photon> photons, float flux_scale = 1.0f, size_t leaf_size = kDefaultLeafSize);
+  // flux_scale multiplies every record's stored power (see Photon). With `order`, receives for
+  // each index of the map the photon's index in `photons`.
+  void build(std::vector<Photon> photons, float flux_scale = 1.0f, size_t leaf_size = kDefaultLeafSize,
+             std::vector<uint32_t>* order = nullptr);
   Color power(uint32_t i) const { return photons_[i].power() * flux_scale_; }
   float flux_scale() const { return flux_scale_; }
   // The k nearest photons within max_radius, nearest first. Returns how many were found.

@@ -36,6 +36,12 @@ PhotonSettings PhotonSettings::read(const JsonSource& src, const RenderSettings&
   auto number = [&](const char* key, float& field) {
     if (v.contains(key)) field = float(r.number_in(v[key], child(src.pointer, key), 0.0, 1e30));
   };
+  // photon-direct shows one photon map as it is, unless asked otherwise.
+  s.progressive = final_gather;
+  if (v.contains("progressive")) s.progressive = r.boolean(v["progressive"], child(src.pointer, "progressive"));
+  // Progressive passes each trace their own maps: fewer photons per pass do better at equal
+  // time there (BENCHMARKS.md, "Progressive photon mapping").
+  if (s.progressive) s.photons = s.caustic_photons = kProgressivePhotons;
   integer("photons", s.photons, 0, int64_t(1) << 31);
   integer("caustic_photons", s.caustic_photons, 0, int64_t(1) << 31);
   integer("global_k", s.global_k, 1, 10000);
@@ -47,7 +53,6 @@ PhotonSettings PhotonSettings::read(const JsonSource& src, const RenderSettings&
   integer("irradiance_stride", s.irradiance_stride, 0, 1 << 20);
   number("glossy_threshold", s.glossy_threshold);
   if (v.contains("hide_emitters")) s.hide_emitters = r.boolean(v["hide_emitters"], child(src.pointer, "hide_emitters"));
-  if (v.contains("progressive")) s.progressive = r.boolean(v["progressive"], child(src.pointer, "progressive"));
   if (v.contains("alpha")) {
     s.alpha = float(r.number_in(v["alpha"], child(src.pointer, "alpha"), 1e-3, 0.999));
   }
@@ -62,7 +67,6 @@ void PhotonIntegrator::preprocess(const Scene& scene, const PreprocessContext& c
   global_est_.k = size_t(settings_.global_k);
   caustic_est_.k = size_t(settings_.caustic_k);
   caustic_est_.cone_filter = true;
-  global_est_.fixed_radius = caustic_est_.fixed_radius = settings_.progressive;
   // Radii from the photon density on the scene's surfaces: a disc holding k photons if they
   // were spread evenly. A progressive pass estimates within fixed radii, shrinking from these;
   // otherwise they bound the k-NN search, 3x wider for the global map (it also covers dim regions).
@@ -71,10 +75,14 @@ void PhotonIntegrator::preprocess(const Scene& scene, const PreprocessContext& c
     return std::sqrt(float(k) * area / (kPi * float(std::max<size_t>(photons, 1))));
   };
   if (settings_.progressive) {
-    global_r1_ = settings_.global_radius > 0 ? settings_.global_radius : even_radius(settings_.global_k, settings_.photons);
+    global_r1_ = settings_.global_radius > 0 ? settings_.global_radius
+                                             : 3.0f * even_radius(settings_.global_k, settings_.photons);
     caustic_r1_ = settings_.caustic_radius > 0 ? settings_.caustic_radius
                                                : even_radius(settings_.caustic_k, settings_.caustic_photons);
-    return;  // the maps are traced pass by pass (begin_pass)
+    // Pass 0's maps now (so that `caustica photons` and the AOVs see maps); the others in begin_pass.
+    built_pass_ = -1;
+    begin_pass(scene, 0, context);
+    return;
   }
   if (!build_maps(scene, context.seed, context)) return;
   global_est_.max_radius = settings_.global_radius > 0 ? settings_.global_radius
@@ -85,22 +93,26 @@ void PhotonIntegrator::preprocess(const Scene& scene, const PreprocessContext& c
 }
 
 bool PhotonIntegrator::begin_pass(const Scene& scene, int pass, const PreprocessContext& context) {
-  if (!settings_.progressive) return true;
-  const float scale = float(std::sqrt(progressive_radius2_scale(pass, settings_.alpha)));
-  global_est_.max_radius = global_r1_ * scale;
-  caustic_est_.max_radius = caustic_r1_ * scale;
+  if (!settings_.progressive || pass == built_pass_) return true;
+  // Each estimate's disc (the k nearest photons', at most the first radii) shrinks by the
+  // schedule: per pass the same adaptive disc as without progression, scaled.
+  const float scale2 = float(progressive_radius2_scale(pass, settings_.alpha));
+  global_est_.max_radius = global_r1_;
+  caustic_est_.max_radius = caustic_r1_;
+  global_est_.radius2_scale = caustic_est_.radius2_scale = scale2;
   // Pass i's photons come from their own seed: the image is the same for any thread count.
   const uint64_t seed = pass == 0 ? context.seed : hash_seed(context.seed, uint64_t(pass), 0x70706d);  // "ppm"
   if (!build_maps(scene, seed, context)) return false;
   build_irradiance();
+  built_pass_ = pass;
   return true;
 }
 
 void PhotonIntegrator::build_irradiance() {
   if (!final_gather_ || settings_.irradiance_stride <= 0 || global_.empty()) return;
   const auto t0 = std::chrono::steady_clock::now();
-  // For the gather from the camera ray's hit (eye vertex 1), by far the most common lookup.
-  irradiance_.build(global_, size_t(settings_.irradiance_stride), at_depth(global_est_, 1));
+  // For the gathers from eye vertices 0 .. 3 (their points at eye vertices 1 .. 4).
+  irradiance_.build(global_, size_t(settings_.irradiance_stride), at_depth(global_est_, 1), 8);
   stats_.irradiance_seconds += seconds_since(t0);
   stats_.irradiance_bytes = irradiance_.memory_bytes();
 }
@@ -138,9 +150,11 @@ Color PhotonIntegrator::indirect_at(const SurfaceHit& hit, const Vec3& wo, std::
   const EstimateSettings est = at_depth(global_est_, depth);
   if (est.max_bounces < 0) return Color(0.0f);
   const Vec3 n_side = glm::dot(wo, hit.n) >= 0 ? hit.n : -hit.n;
-  if (irradiance_.size() > 0 && irradiance_.serves(est) && hit.material->is_lambertian()) {
+  const int level = irradiance_.size() > 0 ? irradiance_.level_for(est) : -1;
+  if (level >= 0 && hit.material->is_lambertian()) {
     Color E;
-    if (irradiance_.lookup(hit.p, n_side, est.max_radius, E, scratch)) return hit.material->albedo(hit.sp) * kInvPi * E;
+    // A progressive pass also shrinks how far away the precomputed point may lie.
+    if (irradiance_.lookup(hit.p, n_side, est.max_radius * std::sqrt(est.radius2_scale), level, E, scratch)) return hit.material->albedo(hit.sp) * kInvPi * E;
   }
   return radiance_estimate(global_, hit, wo, est, scratch);
 }

@@ -167,3 +167,26 @@ TEST_CASE("report: loads without errors in headless Chromium", "[app][report]") 
   const double mean = sum / double(image.pixels.size());
   CHECK(sum2 / double(image.pixels.size()) - mean * mean > 1e-3);
 }
+
+TEST_CASE("report: the convergence slope is the late log-log slope of relMSE against time", "[app][report]") {
+  ReportSeries noise{"noise", {}}, floor{"floor", {}}, mixed{"mixed", {}}, short_run{"short", {}};
+  for (double t = 1; t <= 64; t *= 2) {
+    noise.points.push_back({t, 0.1 / t, 0, 1});
+    floor.points.push_back({t, 0.01, 0, 1});
+    // 1/t noise over a bias floor of 0.001: steep early, flat late.
+    mixed.points.push_back({t, 0.1 / t + 0.001, 0, 1});
+  }
+  short_run.points.push_back({5, 0.1, 0, 1});
+  CHECK(convergence_slope(noise) == Approx(-1.0).margin(1e-9));
+  CHECK(convergence_slope(floor) == Approx(0.0).margin(1e-9));
+  // From 16 s on (a quarter of 64): log(0.1/t + 0.001) over t = 16, 32, 64.
+  const double x[3] = {std::log(16.0), std::log(32.0), std::log(64.0)};
+  double y[3];
+  for (int i = 0; i < 3; ++i) y[i] = std::log(0.1 / std::exp(x[i]) + 0.001);
+  const double mx = (x[0] + x[1] + x[2]) / 3, my = (y[0] + y[1] + y[2]) / 3;
+  double num = 0, den = 0;
+  for (int i = 0; i < 3; ++i) num += (x[i] - mx) * (y[i] - my), den += (x[i] - mx) * (x[i] - mx);
+  CHECK(convergence_slope(mixed) == Approx(num / den).epsilon(1e-9));
+  CHECK(convergence_slope(mixed) > -0.9);
+  CHECK(std::isnan(convergence_slope(short_run)));
+}

@@ -831,3 +831,36 @@ TEST_CASE("mitsuba: a mirroring to_world keeps a rectangle's normal, and mesh fi
   CHECK(files["objects"][0]["smooth_normals"] == true);
   CHECK_FALSE(files["objects"][1].contains("smooth_normals"));
 }
+
+TEST_CASE("mitsuba: 0.6 sppm, ppm and photonmapper become sppm, progressive photon and photon", "[mitsuba]") {
+  const std::string sensor = R"(
+  <sensor type="perspective"><float name="fov" value="40"/>
+    <sampler type="independent"><integer name="sampleCount" value="8"/></sampler>
+    <film type="hdrfilm"><integer name="width" value="16"/><integer name="height" value="8"/></film>
+  </sensor>
+  <shape type="sphere"><bsdf type="diffuse"/></shape>)";
+  // The sensor comes after the integrator: maxPasses still decides the samples per pixel.
+  const json sppm = translate(xml_scene(R"(  <integrator type="sppm"><integer name="maxDepth" value="5"/>
+    <integer name="photonCount" value="12345"/><float name="initialRadius" value="0.25"/>
+    <float name="alpha" value="0.7"/><integer name="maxPasses" value="32"/></integrator>)" + sensor, "0.6.0"));
+  CHECK(sppm["integrator"]["type"] == "sppm");
+  CHECK(sppm["integrator"]["photons"] == 12345);
+  CHECK(sppm["integrator"]["radius"].get<double>() == Approx(0.25));
+  CHECK(sppm["integrator"]["alpha"].get<double>() == Approx(0.7));
+  CHECK(sppm["render"]["spp"] == 32);
+  CHECK(sppm["render"]["max_depth"] == 4);
+  // Mitsuba's initialRadius 0 means "choose one", as a missing radius does here.
+  const json automatic = translate(xml_scene(R"(  <integrator type="sppm"><float name="initialRadius" value="0"/></integrator>)" + sensor, "0.6.0"));
+  CHECK_FALSE(automatic["integrator"].contains("radius"));
+  CHECK(automatic["render"]["spp"] == 8);
+  const json ppm = translate(xml_scene(R"(  <integrator type="ppm"><integer name="photonCount" value="5000"/></integrator>)" + sensor, "0.6.0"));
+  CHECK(ppm["integrator"] == json({{"type", "photon"}, {"progressive", true}, {"photons", 5000}}));
+  const json pm = translate(xml_scene(R"(  <integrator type="photonmapper"><integer name="globalPhotons" value="7000"/></integrator>)" + sensor, "0.6.0"));
+  CHECK(pm["integrator"] == json({{"type", "photon"}, {"photons", 7000}}));
+  // The translated scenes load: the integrators accept every key the translation writes.
+  for (const char* body : {R"(<integrator type="sppm"><integer name="photonCount" value="100"/><float name="initialRadius" value="0.25"/><float name="alpha" value="0.7"/></integrator>)",
+                                  R"(<integrator type="ppm"><integer name="photonCount" value="100"/><float name="alpha" value="0.5"/></integrator>)"}) {
+    LoadedScene loaded = parse_scene(xml_scene(std::string(body) + sensor, "0.6.0"), "scene.xml", ".");
+    CHECK_NOTHROW(create_integrator(loaded.scene->integrator_type, loaded.scene->integrator_settings, loaded.scene->render));
+  }
+}

@@ -112,6 +112,10 @@ class Translator {
       doc["render"]["spp"] = 4;
       doc["render"]["filter"] = {{"type", "gaussian"}, {"stddev", 0.5}};
     }
+    if (max_passes_) {  // wins over the sensor's sample count, wherever the sensor is
+      doc["render"]["spp"] = integer(*max_passes_);
+      note("/render/spp", max_passes_->where);
+    }
     if (!have_integrator) {
       doc["integrator"] = {{"type", "path"}, {"rr_depth", 5}};
       doc["render"]["max_depth"] = kUnlimitedDepth;
@@ -417,6 +421,7 @@ class Translator {
     }
   }
 
+  const XmlProperty* max_passes_ = nullptr;  // (s)ppm's pass count: the samples per pixel
   void integrator(const XmlObject& o0) {
     const XmlObject* o = &o0;
     while (o->type == "moment" || o->type == "aov") {
@@ -452,31 +457,47 @@ class Translator {
       strict_normals(props);
       warn(o->where, "\"direct\" is rendered as the path tracer with one bounce (emitter and BSDF sampling by MIS)");
     } else if (o->type == "photonmapper" || o->type == "sppm" || o->type == "ppm") {
-      integ = {{"type", "photon"}};
+      // photonmapper: Jensen's two passes; ppm: the same, progressive; sppm: our sppm.
+      integ = {{"type", o->type == "sppm" ? "sppm" : "photon"}};
+      if (o->type == "ppm") integ["progressive"] = true;
       doc["render"]["max_depth"] = depth(props.get("max_depth"), -1);
-      auto count = [&](const char* from, const char* to) {
+      auto copy = [&](const char* from, const char* to, bool is_integer) {
         if (const XmlProperty* p = props.get(from)) {
-          integ[to] = integer(*p);
+          if (is_integer) {
+            integ[to] = integer(*p);
+          } else {
+            integ[to] = number(*p);
+          }
           note(std::string("/integrator/") + to, p->where);
         }
       };
-      count("global_photons", "photons");
-      count("photon_count", "photons");
-      count("caustic_photons", "caustic_photons");
-      count("lookup_size", "global_k");
-      count("global_lookup_size", "global_k");
-      count("caustic_lookup_size", "caustic_k");
-      count("direct_samples", "direct_samples");
+      copy("photon_count", "photons", true);
+      copy("alpha", "alpha", false);
+      if (o->type == "sppm") {
+        // Mitsuba's initial radius 0 means "choose one", as ours does.
+        const XmlProperty* r = props.get("initial_radius");
+        if (r && number(*r) > 0) copy("initial_radius", "radius", false);
+      } else {
+        copy("global_photons", "photons", true);
+        copy("caustic_photons", "caustic_photons", true);
+        copy("lookup_size", "global_k", true);
+        copy("global_lookup_size", "global_k", true);
+        copy("caustic_lookup_size", "caustic_k", true);
+        copy("direct_samples", "direct_samples", true);
+      }
+      // A pass count is the number of samples per pixel: each pass is one sample.
+      if (const XmlProperty* p = props.get("max_passes"); p && integer(*p) > 0) max_passes_ = p;
       std::string ignored;
       for (const XmlProperty* p : props.unused()) {
         if (p->name != "hide_emitters") ignored += (ignored.empty() ? "" : ", ") + p->name;
       }
       props.ignore({"volume_photons", "glossy_samples", "rr_depth", "granularity", "global_lookup_radius",
                     "caustic_lookup_radius", "volume_lookup_size", "gather_locally", "auto_cancel_gathering",
-                    "max_specular_depth", "initial_radius", "alpha", "max_passes", "photon_count",
-                    "lookup_size", "global_lookup_size"});
-      if (o->type != "photonmapper") {
-        warn(o->where, "\"" + o->type + "\" is rendered by Caustica's photon mapper (final gathering and a caustic map)");
+                    "max_specular_depth", "initial_radius", "alpha", "max_passes", "photon_count", "global_photons",
+                    "caustic_photons", "lookup_size", "global_lookup_size", "caustic_lookup_size", "direct_samples"});
+      if (o->type == "ppm") {
+        warn(o->where, "\"ppm\" is rendered by Caustica's progressive photon mapper (final gathering and a caustic map, "
+                       "Knaus-Zwicker radii)");
       }
       if (!ignored.empty()) warn(o->where, "settings without a counterpart here are ignored: " + ignored);
     } else {
