@@ -18,9 +18,11 @@ threads=${THREADS:-2}
 [ -f "$R/ref-caustic-ring.exr" ] || $C render scenes/caustic-ring.json --integrator photon --photons 4000000 \
   --caustic-photons 4000000 --gather-rays 128 --spp 64 --seed 1000 --threads "$threads" -o "$R/ref-caustic-ring.exr" -q
 
+# Progressive photon (the default), one pair of maps, SPPM and path at equal time.
 for scene in cornell-spheres caustic-ring; do
-  $C converge "scenes/$scene.json" --reference "$R/ref-$scene.exr" --integrators photon,path --time 60 \
-    --checkpoints 10,20,30,60 --threads "$threads" --out "$R/converge-$scene" -q
+  $C converge "scenes/$scene.json" --reference "$R/ref-$scene.exr" \
+    --integrators photon,photon:progressive=false,sppm,path --time 120 \
+    --checkpoints 10,20,30,60,120 --threads "$threads" --out "$R/converge-$scene" -q
 done
 
 # Scaling: photon pass and kd-tree build against the photon count (n log n expected).

@@ -78,9 +78,26 @@ std::unique_ptr<Integrator> integrator_for(const Scene& scene, const std::string
     }
     settings.value[kv.first] = kv.second;
   }
-  // Unknown keys given with the name are errors of the integrator's own settings check.
-  for (const auto& kv : spec_settings) settings.value[kv.first] = kv.second;
-  return create_integrator(type, settings, scene.render);
+  for (const auto& kv : spec_settings) {
+    for (const auto& flag : options.integrator_overrides) {
+      if (flag.first == kv.first) {
+        std::string name = "--" + kv.first;
+        std::replace(name.begin(), name.end(), '_', '-');
+        if (kv.first == "progressive") name = "--progressive/--no-progressive";
+        throw InputError("integrator \"" + spec + "\" sets " + kv.first + " and so does " + name + ": give it once");
+      }
+    }
+    settings.value[kv.first] = kv.second;
+  }
+  if (settings.file.empty()) settings.file = options.scene;
+  if (settings.pointer.empty()) settings.pointer = "/integrator";
+  if (spec_settings.empty()) return create_integrator(type, settings, scene.render);
+  // A setting given with the name that the integrator refuses: say where it came from.
+  try {
+    return create_integrator(type, settings, scene.render);
+  } catch (const InputError& e) {
+    throw InputError("integrator \"" + spec + "\": " + e.what());
+  }
 }
 
 int thread_count(const SceneOptions& options) {

@@ -27,7 +27,11 @@ Color gather(const PhotonMap& map, const Vec3& p, const Vec3& n_side, const Esti
   const float r = std::sqrt(r2);
   Color sum(0.0f);
   size_t used = 0;
-  for (const Neighbour& nb : scratch) {
+  // A disc through the k-th nearest photon holds k - 1 photons inside it: counting the k-th as
+  // well reads k / (k - 1) too high (11 % at k = 10, 2 % at k = 50). (k = 1 keeps its photon.)
+  const size_t counted = !s.fixed_radius && found == s.k && s.k > 1 ? found - 1 : found;
+  for (size_t i = 0; i < counted; ++i) {
+    const Neighbour& nb = scratch[i];
     if (shrunk && nb.dist2 >= r2) continue;
     const Photon& ph = map[nb.index];
     if (int(ph.bounces) < s.min_bounces || int(ph.bounces) > s.max_bounces) continue;

@@ -15,24 +15,7 @@ namespace fs = std::filesystem;
 namespace {
 const std::string kTiny = std::string(CAUSTICA_SOURCE_DIR) + "/tests/data/tiny.json";
 
-const char* kGoodScene = R"({
-  "camera": {"position": [0, 1, 3], "look_at": [0, 1, 0], "fov": 50},
-  "render": {"width": 16, "height": 16, "spp": 2},
-  "materials": {"white": {"type": "diffuse", "albedo": [0.7, 0.7, 0.7]},
-                "lamp": {"type": "diffuse", "albedo": [0, 0, 0], "emission": [5, 5, 5]}},
-  "objects": [
-    {"type": "quad", "origin": [-2, 0, -2], "edge1": [0, 0, 4], "edge2": [4, 0, 0], "material": "white"},
-    {"type": "quad", "origin": [-0.5, 2, -0.5], "edge1": [1, 0, 0], "edge2": [0, 0, 1], "material": "lamp"}
-  ]
-})";
 
-bool no_images_left(const test::TempDir& dir) {
-  for (const auto& e : fs::directory_iterator(dir.path())) {
-    const std::string name = e.path().filename().string();
-    if (name != "stdout.txt" && name != "stderr.txt" && e.path().extension() != ".json") return false;
-  }
-  return true;
-}
 }  // namespace
 
 TEST_CASE("cli: renders a tiny scene to PNG and EXR", "[app]") {
@@ -65,11 +48,11 @@ TEST_CASE("cli: --version and --help", "[app]") {
 
 TEST_CASE("cli: bad input exits non-zero with a located message and writes no image", "[app]") {
   test::TempDir dir;
-  dir.write("good.json", kGoodScene);
+  dir.write("good.json", test::kLitFloorScene);
   struct Case {
     std::string name, scene_text, args, expect;
   };
-  std::string good(kGoodScene);
+  std::string good(test::kLitFloorScene);
   auto replaced = [&](const std::string& from, const std::string& to) {
     std::string s = good;
     s.replace(s.find(from), from.size(), to);
@@ -135,7 +118,7 @@ TEST_CASE("cli: bad input exits non-zero with a located message and writes no im
       CHECK(r.exit_code < 128);  // not killed by a signal
       CHECK(r.err.find(c.expect) != std::string::npos);
       fs::remove(dir.file("bad.json"));
-      CHECK(no_images_left(dir));
+      CHECK(test::no_images_left(dir));
     }
   }
 }
@@ -177,7 +160,7 @@ TEST_CASE("cli: compare prints the figures, as JSON too, and writes an error map
 
 TEST_CASE("cli: warnings (degenerate triangle, albedo above 1) still render", "[app]") {
   test::TempDir dir;
-  std::string text(kGoodScene);
+  std::string text(test::kLitFloorScene);
   text.replace(text.find("\"albedo\": [0.7, 0.7, 0.7]"), 25, "\"albedo\": [1.2, 0.7, 0.7]");
   text.replace(text.find("\n  ]\n}"), 4,
                ", {\"type\": \"triangle\", \"vertices\": [[0, 0, 0], [1, 1, 1], [2, 2, 2]], \"material\": \"white\"}]");
@@ -192,7 +175,7 @@ TEST_CASE("cli: warnings (degenerate triangle, albedo above 1) still render", "[
 
 TEST_CASE("cli: an unreadable scene file is a clear error", "[app]") {
   test::TempDir dir;
-  const std::string path = dir.write("locked.json", kGoodScene);
+  const std::string path = dir.write("locked.json", test::kLitFloorScene);
   fs::permissions(path, fs::perms::none);
   if (geteuid() == 0) {
     WARN("running as root: file permissions do not apply, unreadable-file case checked through a FIFO instead");

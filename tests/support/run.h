@@ -2,6 +2,7 @@
 #pragma once
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <string>
 #include <sys/wait.h>
 #include "support/temp_dir.h"
@@ -24,6 +25,27 @@ inline RunResult run_caustica(const std::string& args, const TempDir& dir, const
   r.out = read_text(out);
   r.err = read_text(err);
   return r;
+}
+
+// A 16x16 scene with a floor and a small area light, for command-line tests.
+inline const char* kLitFloorScene = R"({
+  "camera": {"position": [0, 1, 3], "look_at": [0, 1, 0], "fov": 50},
+  "render": {"width": 16, "height": 16, "spp": 2},
+  "materials": {"white": {"type": "diffuse", "albedo": [0.7, 0.7, 0.7]},
+                "lamp": {"type": "diffuse", "albedo": [0, 0, 0], "emission": [5, 5, 5]}},
+  "objects": [
+    {"type": "quad", "origin": [-2, 0, -2], "edge1": [0, 0, 4], "edge2": [4, 0, 0], "material": "white"},
+    {"type": "quad", "origin": [-0.5, 2, -0.5], "edge1": [1, 0, 0], "edge2": [0, 0, 1], "material": "lamp"}
+  ]
+})";
+
+// True when the folder holds nothing but the captured output and scene files: no image was written.
+inline bool no_images_left(const TempDir& dir) {
+  for (const auto& e : std::filesystem::directory_iterator(dir.path())) {
+    const std::string name = e.path().filename().string();
+    if (name != "stdout.txt" && name != "stderr.txt" && e.path().extension() != ".json") return false;
+  }
+  return true;
 }
 
 }  // namespace caustica::test
