@@ -48,6 +48,9 @@ std::unique_ptr<Integrator> integrator_for(const Scene& scene, const std::string
       }
       nlohmann::json value = nlohmann::json::parse(item.substr(eq + 1), nullptr, false);
       if (value.is_discarded()) value = item.substr(eq + 1);  // a bare word is a string
+      for (const auto& kv : spec_settings) {
+        if (kv.first == item.substr(0, eq)) throw InputError("integrator \"" + spec + "\": " + kv.first + " given twice");
+      }
       spec_settings.emplace_back(item.substr(0, eq), value);
       at = end + 1;
     }

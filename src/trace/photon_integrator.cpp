@@ -110,9 +110,10 @@ bool PhotonIntegrator::begin_pass(const Scene& scene, int pass, const Preprocess
 }
 
 void PhotonIntegrator::build_irradiance() {
+  irradiance_ = IrradianceCache{};  // never a previous pass's
   if (!final_gather_ || settings_.irradiance_stride <= 0 || global_.empty()) return;
   const auto t0 = std::chrono::steady_clock::now();
-  // For the gathers from eye vertices 0 .. 3 (their points at eye vertices 1 .. 4).
+  // For the gathers' points at eye vertices 1 .. 8 (gathers from eye vertices 0 .. 7).
   irradiance_.build(global_, size_t(settings_.irradiance_stride), at_depth(global_est_, 1), 8);
   stats_.irradiance_seconds += seconds_since(t0);
   stats_.irradiance_bytes = irradiance_.memory_bytes();

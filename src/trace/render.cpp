@@ -108,12 +108,16 @@ Image render_image(const Scene& scene, Integrator& integrator, const RenderOptio
     stats.interrupted = cancelled();
     stats.passes = *std::min_element(pixel_passes.begin(), pixel_passes.end());
   } else {
+    double last_pass_start = 0;
     for (int pass = 0;; ++pass) {
       if (!timed && pass >= options.spp) break;
       if (timed && pass > 0) {
+        // The next pass would overrun the budget. The last pass's time counts too: a progressive
+        // integrator's first photon pass ran before the render (preprocess), the others in it.
         const double t = elapsed();
-        if (t + t / pass > options.time_limit) break;  // the next pass would overrun the budget
+        if (t + std::max(t / pass, t - last_pass_start) > options.time_limit) break;
       }
+      last_pass_start = elapsed();
       if (progressive && !integrator.begin_pass(scene, pass, pass_context)) {
         stats.interrupted = true;
         stats.passes = pass;

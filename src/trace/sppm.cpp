@@ -107,14 +107,17 @@ Color SppmIntegrator::Li(const Ray& camera_ray, const Scene& scene, Sampler& sam
     // (the 0-bounce ones are the direct light).
     path.L += path.beta * estimate_direct(scene, hit, wo, sampler, 0.0f);
     if (max_depth - 1 - depth < 1 || map_.empty()) break;
+    if (sampler.pixel >= pixels_.size()) break;  // not a pixel of the film preprocess saw
     SppmPixel& px = pixels_[sampler.pixel];
     EstimateSettings est;
     est.fixed_radius = true;
     est.max_radius = px.radius;
     EstimateInfo info;
     const Color estimate = radiance_estimate(map_, hit, wo, with_bounces(est, 1, max_depth - 1 - depth), tls_scratch, &info);
-    // radiance_estimate divides by the disc's area; the statistics keep the flux.
-    px.add_pass(info.photons, path.beta * estimate * (kPi * px.radius * px.radius), settings_.alpha);
+    // radiance_estimate divides by the disc's area; the statistics keep the flux. A non-finite
+    // estimate would stay in tau for good: it is dropped, as the render loop drops such samples.
+    const Color phi = path.beta * estimate * (kPi * px.radius * px.radius);
+    if (is_finite(phi)) px.add_pass(info.photons, phi, settings_.alpha);
     break;
   }
   return path.L;

@@ -856,7 +856,7 @@ TEST_CASE("mitsuba: 0.6 sppm, ppm and photonmapper become sppm, progressive phot
   const json ppm = translate(xml_scene(R"(  <integrator type="ppm"><integer name="photonCount" value="5000"/></integrator>)" + sensor, "0.6.0"));
   CHECK(ppm["integrator"] == json({{"type", "photon"}, {"progressive", true}, {"photons", 5000}}));
   const json pm = translate(xml_scene(R"(  <integrator type="photonmapper"><integer name="globalPhotons" value="7000"/></integrator>)" + sensor, "0.6.0"));
-  CHECK(pm["integrator"] == json({{"type", "photon"}, {"photons", 7000}}));
+  CHECK(pm["integrator"] == json({{"type", "photon"}, {"progressive", false}, {"photons", 7000}}));
   // The translated scenes load: the integrators accept every key the translation writes.
   for (const char* body : {R"(<integrator type="sppm"><integer name="photonCount" value="100"/><float name="initialRadius" value="0.25"/><float name="alpha" value="0.7"/></integrator>)",
                                   R"(<integrator type="ppm"><integer name="photonCount" value="100"/><float name="alpha" value="0.5"/></integrator>)"}) {

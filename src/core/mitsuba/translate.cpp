@@ -459,7 +459,8 @@ class Translator {
     } else if (o->type == "photonmapper" || o->type == "sppm" || o->type == "ppm") {
       // photonmapper: Jensen's two passes; ppm: the same, progressive; sppm: our sppm.
       integ = {{"type", o->type == "sppm" ? "sppm" : "photon"}};
-      if (o->type == "ppm") integ["progressive"] = true;
+      // photon is progressive by default: photonmapper asks for one pair of maps.
+      if (o->type != "sppm") integ["progressive"] = o->type == "ppm";
       doc["render"]["max_depth"] = depth(props.get("max_depth"), -1);
       auto copy = [&](const char* from, const char* to, bool is_integer) {
         if (const XmlProperty* p = props.get(from)) {
