@@ -16,8 +16,14 @@
 namespace caustica {
 namespace {
 
+// Ctrl-C (SIGINT) and SIGTERM (what batch schedulers such as Slurm send at a job's time limit)
+// both stop the render after the passes completed so far, which are written.
 std::atomic<bool> g_interrupted{false};
-extern "C" void on_sigint(int) { g_interrupted.store(true); }
+std::atomic<int> g_signal{0};
+extern "C" void on_stop_signal(int sig) {
+  g_signal.store(sig);
+  g_interrupted.store(true);
+}
 
 }  // namespace
 
@@ -49,7 +55,9 @@ int run_render(const RenderArgs& args) {
   tbb::global_control control(tbb::global_control::max_allowed_parallelism, size_t(threads));
 
   g_interrupted = false;
-  auto previous = std::signal(SIGINT, on_sigint);
+  g_signal = 0;
+  auto previous_int = std::signal(SIGINT, on_stop_signal);
+  auto previous_term = std::signal(SIGTERM, on_stop_signal);
   PreprocessContext pre{rs.seed, args.common.quiet, &g_interrupted};
   const auto t0 = std::chrono::steady_clock::now();
   integrator->preprocess(scene, pre);
@@ -65,11 +73,14 @@ int run_render(const RenderArgs& args) {
   RenderStats stats;
   std::vector<Image> aovs;
   Image image = g_interrupted ? Image(rs.width, rs.height) : render_image(scene, *integrator, options, stats, &aovs);
-  std::signal(SIGINT, previous);
+  std::signal(SIGINT, previous_int);
+  std::signal(SIGTERM, previous_term);
   if (g_interrupted) stats.interrupted = true;
+  // The shell's convention: 128 + the signal (130 for SIGINT, 143 for SIGTERM).
+  const int interrupted_code = 128 + (g_signal.load() != 0 ? g_signal.load() : SIGINT);
   if (stats.interrupted && stats.passes == 0) {
     std::cerr << "interrupted before the first pass was complete: no image written\n";
-    return 130;
+    return interrupted_code;
   }
   write_image(output, image, args.exposure);
   if (args.aov && aovs.size() == 2) {
@@ -108,7 +119,7 @@ int run_render(const RenderArgs& args) {
     if (!args.common.quiet) std::cout << "error against " << args.reference << ":\n";
     std::cout << format_metrics(m, false);
   }
-  return stats.interrupted ? 130 : 0;
+  return stats.interrupted ? interrupted_code : 0;
 }
 
 }  // namespace caustica
