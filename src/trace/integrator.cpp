@@ -1,6 +1,8 @@
 // The factory table: every integrator by name (Tungsten's IntegratorFactory in spirit).
 #include "trace/integrator.h"
+#include <algorithm>
 #include <functional>
+#include <iostream>
 #include "trace/path.h"
 #include "trace/photon_integrator.h"
 #include "trace/sppm.h"
@@ -23,6 +25,14 @@ const std::vector<std::pair<std::string, Maker>>& table() {
 }
 
 }  // namespace
+
+void report_new_warnings(const std::vector<std::string>& fresh, std::vector<std::string>& seen, bool quiet) {
+  for (const std::string& w : fresh) {
+    if (std::find(seen.begin(), seen.end(), w) != seen.end()) continue;
+    if (!quiet) std::cerr << "warning: " << w << "\n";
+    seen.push_back(w);
+  }
+}
 
 std::vector<std::string> integrator_names() {
   std::vector<std::string> names;

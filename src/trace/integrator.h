@@ -37,6 +37,10 @@ class Integrator {
   virtual std::string describe() const = 0;
 };
 
+// Prints (unless quiet) and records the warnings of `fresh` not already in `seen`: a
+// progressive integrator's passes repeat the photon pass's warnings.
+void report_new_warnings(const std::vector<std::string>& fresh, std::vector<std::string>& seen, bool quiet);
+
 // Creates the integrator `type`, reading its settings (unknown keys are errors).
 // Throws InputError listing the valid names when `type` is unknown.
 std::unique_ptr<Integrator> create_integrator(const std::string& type, const JsonSource& settings,

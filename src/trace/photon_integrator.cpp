@@ -132,11 +132,7 @@ bool PhotonIntegrator::build_maps(const Scene& scene, uint64_t seed, const Prepr
   stats_.global_emitted += r.global_emitted;
   stats_.caustic_emitted += r.caustic_emitted;
   ++stats_.passes;
-  for (const auto& w : r.warnings) {
-    if (std::find(warnings_.begin(), warnings_.end(), w) != warnings_.end()) continue;
-    if (!context.quiet) std::cerr << "warning: " << w << "\n";
-    warnings_.push_back(w);
-  }
+  report_new_warnings(r.warnings, warnings_, context.quiet);
   auto t0 = std::chrono::steady_clock::now();
   // The two kd-tree builds are serial inside nanoflann: side by side they take one's time.
   tbb::parallel_invoke([&] { global_.build(std::move(r.global), r.global_scale); },

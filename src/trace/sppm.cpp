@@ -62,11 +62,7 @@ bool SppmIntegrator::begin_pass(const Scene& scene, int pass, const PreprocessCo
   PhotonPassResult r = trace_photons(scene, s);
   photon_seconds_ += r.seconds;
   emitted_ += r.global_emitted;
-  for (const auto& w : r.warnings) {
-    if (std::find(warnings_.begin(), warnings_.end(), w) != warnings_.end()) continue;
-    if (!context.quiet) std::cerr << "warning: " << w << "\n";
-    warnings_.push_back(w);
-  }
+  report_new_warnings(r.warnings, warnings_, context.quiet);
   if (context.cancel && context.cancel->load()) return false;
   map_.build(std::move(r.global), r.global_scale);
   ++passes_;
