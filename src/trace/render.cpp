@@ -128,8 +128,13 @@ Image render_image(const Scene& scene, Integrator& integrator, const RenderOptio
       });
       if (cancelled()) {
         stats.interrupted = true;
+        // The cancel may have come after the last tile of this pass: then the pass is whole.
         // A pass cut short: the pixels it reached keep it (each pixel is divided by its own count).
-        stats.passes = pass;
+        if (*std::min_element(pixel_passes.begin(), pixel_passes.end()) > pass) {
+          finish_pass(pass + 1);
+        } else {
+          stats.passes = pass;
+        }
         break;
       }
       finish_pass(pass + 1);
