@@ -8,6 +8,7 @@
 #include "app/photons_command.h"
 #include "app/render_command.h"
 #include "core/json_reader.h"
+#include "trace/cluster.h"
 #include "trace/integrator.h"
 
 namespace caustica {
@@ -157,6 +158,21 @@ int run_cli(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     return app.exit(e) == 0 ? 0 : 1;
   }
+  const Cluster& cluster = Cluster::world();
+  if (cluster.distributed() && !render->parsed()) {
+    if (cluster.root()) std::cerr << "error: only `caustica render` runs on several MPI ranks; start the others alone\n";
+    return 1;
+  }
+  // On several ranks an error ends the whole job (MPI_Abort): the other ranks would otherwise
+  // wait for this one in the next collective call. Each message names its rank.
+  auto fail = [&](const std::string& what, int code) {
+    if (!cluster.distributed()) {
+      std::cerr << what << "\n";
+      return code;
+    }
+    std::cerr << what << " (" << cluster.describe_rank() << ")\n" << std::flush;
+    cluster.abort(code);
+  };
   try {
     if (render->parsed()) {
       render_flags.collect();
@@ -172,11 +188,9 @@ int run_cli(int argc, char** argv) {
       return run_photons(pargs);
     }
   } catch (const InputError& e) {
-    std::cerr << "error: " << e.what() << "\n";
-    return 1;
+    return fail(std::string("error: ") + e.what(), 1);
   } catch (const std::exception& e) {
-    std::cerr << "internal error: " << e.what() << "\n";
-    return 2;
+    return fail(std::string("internal error: ") + e.what(), 2);
   }
   return 0;
 }

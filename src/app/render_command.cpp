@@ -50,6 +50,25 @@ int run_render(const RenderArgs& args) {
   if (args.aov && integrator->name().rfind("photon", 0) != 0) {
     throw InputError("--aov needs a photon integrator (photon or photon-direct), not \"" + integrator->name() + "\"");
   }
+  // Under mpirun: every rank must render the same image, and the integrator's passes must not
+  // depend on one another.
+  const Cluster& cluster = Cluster::world();
+  if (cluster.distributed()) {
+    if (!integrator->passes_independent()) {
+      throw InputError("integrator \"" + integrator->name() +
+                       "\" renders its passes in order (each pass's radii follow from the last): run it on one rank");
+    }
+    std::string settings = args.common.scene + "|" + integrator->name();
+    for (const auto& [key, value] : args.common.integrator_overrides) settings += "|" + key + "=" + value.dump();
+    const uint64_t fingerprint =
+        hash_seed(std::hash<std::string>{}(settings),
+                  hash_seed(uint64_t(rs.width) << 32 | uint64_t(rs.height), uint64_t(rs.spp), rs.seed),
+                  std::hash<double>{}(args.time ? *args.time : 0.0) ^ (args.aov ? 1 : 0));
+    if (!cluster.same_everywhere(fingerprint)) {
+      throw InputError("the ranks were started with different scenes or settings (scene, integrator, size, spp, seed, "
+                       "--time, --aov): every rank must render the same image");
+    }
+  }
 
   const int threads = thread_count(args.common);
   tbb::global_control control(tbb::global_control::max_allowed_parallelism, size_t(threads));
@@ -58,7 +77,8 @@ int run_render(const RenderArgs& args) {
   g_signal = 0;
   auto previous_int = std::signal(SIGINT, on_stop_signal);
   auto previous_term = std::signal(SIGTERM, on_stop_signal);
-  PreprocessContext pre{rs.seed, args.common.quiet, &g_interrupted};
+  const bool quiet = args.common.quiet || !cluster.root();  // one progress bar and report: rank 0's
+  PreprocessContext pre{rs.seed, quiet, &g_interrupted, cluster.rank()};
   const auto t0 = std::chrono::steady_clock::now();
   integrator->preprocess(scene, pre);
   const double preprocess_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -67,7 +87,8 @@ int run_render(const RenderArgs& args) {
   options.spp = rs.spp;
   options.time_limit = args.time ? *args.time : 0.0;
   options.seed = rs.seed;
-  options.quiet = args.common.quiet;
+  options.quiet = quiet;
+  options.cluster = &cluster;
   options.cancel = &g_interrupted;
   options.aov = args.aov;
   RenderStats stats;
@@ -78,6 +99,8 @@ int run_render(const RenderArgs& args) {
   if (g_interrupted) stats.interrupted = true;
   // The shell's convention: 128 + the signal (130 for SIGINT, 143 for SIGTERM).
   const int interrupted_code = 128 + (g_signal.load() != 0 ? g_signal.load() : SIGINT);
+  // Rank 0 writes the image of all ranks; the others are done.
+  if (!cluster.root()) return stats.interrupted ? interrupted_code : 0;
   if (stats.interrupted && stats.passes == 0) {
     std::cerr << "interrupted before the first pass was complete: no image written\n";
     return interrupted_code;
@@ -100,10 +123,14 @@ int run_render(const RenderArgs& args) {
     s << "ray casting: " << scene.accel().name() << " (" << std::setprecision(1)
       << double(scene.accel().memory_bytes()) / (1 << 20) << " MiB)\n" << std::setprecision(3);
     s << "integrator: " << integrator->name() << "\n" << integrator->describe();
+    if (cluster.distributed()) s << "(the integrator's figures above are rank 0's own; those below are all ranks')\n";
     s << "image: " << output << " (" << rs.width << "x" << rs.height << ")\n";
-    s << "threads: " << threads << "\nseed: " << rs.seed << "\n";
+    s << "threads: " << threads << (cluster.distributed() ? " per rank" : "") << "\n";
+    if (cluster.distributed()) s << "MPI ranks: " << cluster.size() << " (rays and samples: all ranks)\n";
+    s << "seed: " << rs.seed << "\n";
     s << "preprocess time: " << preprocess_seconds << " s\n";
     s << "render time: " << stats.seconds << " s\n";
+    if (cluster.distributed()) s << "image gathering (in the render time): " << stats.gather_seconds << " s\n";
     s << "passes (spp): " << stats.passes << (stats.interrupted ? " (interrupted: passes completed so far)" : "")
       << "\n";
     s << "camera samples: " << stats.samples << "\n";

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <iostream>
 #include <tbb/info.h>
+#include <thread>
+#include "trace/cluster.h"
 
 namespace caustica {
 
@@ -104,7 +106,13 @@ std::unique_ptr<Integrator> integrator_for(const Scene& scene, const std::string
 }
 
 int thread_count(const SceneOptions& options) {
-  return options.threads ? *options.threads : tbb::info::default_concurrency();
+  if (options.threads) return *options.threads;
+  // The cores this process may run on. When a launcher bound it to fewer than the machine's
+  // (mpirun binds each rank to a core or a socket), those are its share; otherwise the ranks
+  // on this machine share all its cores.
+  const int usable = tbb::info::default_concurrency();
+  if (usable < int(std::thread::hardware_concurrency())) return usable;
+  return std::max(1, usable / Cluster::world().local_size());
 }
 
 }  // namespace caustica

@@ -15,6 +15,7 @@ struct PreprocessContext {
   uint64_t seed = 0;
   bool quiet = false;
   const std::atomic<bool>* cancel = nullptr;  // set (e.g. by SIGINT) to stop early
+  int first_pass = 0;  // a progressive integrator's first pass here (an MPI rank's: its rank)
 };
 
 class Integrator {
@@ -30,6 +31,9 @@ class Integrator {
   // Turns the per-pixel mean of Li over the passes into the image (SPPM adds its photon
   // statistics here); pixel_passes[i] is the number of passes pixel i received.
   virtual void resolve(Image& /*mean*/, const std::vector<int>& /*pixel_passes*/) const {}
+  // Whether pass i depends on nothing but i, so that MPI ranks may render passes apart. SPPM's
+  // per-pixel radii carry over from pass to pass, so its passes run in order on one process.
+  virtual bool passes_independent() const { return true; }
   // Radiance arriving at the camera along `ray`.
   virtual Color Li(const Ray& ray, const Scene& scene, Sampler& sampler) const = 0;
   virtual std::string name() const = 0;

@@ -80,9 +80,10 @@ void PhotonIntegrator::preprocess(const Scene& scene, const PreprocessContext& c
                                              : 3.0f * even_radius(settings_.global_k, settings_.photons);
     caustic_r1_ = settings_.caustic_radius > 0 ? settings_.caustic_radius
                                                : even_radius(settings_.caustic_k, settings_.caustic_photons);
-    // Pass 0's maps now (so that `caustica photons` and the AOVs see maps); the others in begin_pass.
+    // The first pass's maps now (so that `caustica photons` and the AOVs see maps); the others
+    // in begin_pass.
     built_pass_ = -1;
-    begin_pass(scene, 0, context);
+    begin_pass(scene, context.first_pass, context);
     return;
   }
   if (!build_maps(scene, context.seed, context)) return;

@@ -1,9 +1,10 @@
 // Render loop. Pixel (x, y), sample s seeds its own random stream from hash(pixel, s, seed),
-// so neither tile order nor thread count changes the result; each pass is summed in order.
+// and pixel sums are exact, so neither tile order, thread count nor rank count changes the result.
 #include "trace/render.h"
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <stdexcept>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include "trace/progress.h"
@@ -23,32 +24,41 @@ Vec2 pixel_jitter(uint64_t pixel, uint64_t sample, uint64_t seed) {
 
 Image render_image(const Scene& scene, Integrator& integrator, const RenderOptions& options,
                    RenderStats& stats, std::vector<Image>* aovs) {
+  const Cluster alone;
+  const Cluster& cluster = options.cluster ? *options.cluster : alone;
+  const int rank = cluster.rank(), ranks = cluster.size();
+  if (cluster.distributed() && options.on_pass) {
+    throw std::logic_error("render_image: per-pass images (on_pass) are not gathered across ranks");
+  }
   const int w = scene.camera.width(), h = scene.camera.height();
   const int ts = options.tile_size;
   const int tiles_x = (w + ts - 1) / ts, tiles_y = (h + ts - 1) / ts;
   const int tile_count = tiles_x * tiles_y;
   const bool timed = options.time_limit > 0;
-  std::vector<glm::dvec3> sum(size_t(w) * h, glm::dvec3(0.0));
+  // Exact sums (three per pixel): the same for any grouping of passes among threads and ranks.
+  std::vector<FixedSum> sum(size_t(w) * h * 3, 0);
   const bool want_aov = options.aov && aovs;
   constexpr int kA = Sampler::kAovCount;
-  std::vector<float> aov_sum(want_aov ? size_t(w) * h * kA : 0, 0.0f);
+  std::vector<FixedSum> aov_sum(want_aov ? size_t(w) * h * kA : 0, 0);
   std::atomic<uint64_t> rays{0}, bad{0};
   std::atomic<int> tiles_done{0};
   const auto start = std::chrono::steady_clock::now();
   auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
-  Progress progress("render", timed ? options.time_limit : double(options.spp) * tile_count, options.quiet);
+  // This rank's passes of a fixed count: rank, rank + ranks, ... below spp.
+  const int own_passes = options.spp > rank ? (options.spp - rank + ranks - 1) / ranks : 0;
+  Progress progress("render", timed ? options.time_limit : double(own_passes) * tile_count,
+                    options.quiet || !cluster.root());
   stats = RenderStats{};
   auto cancelled = [&] { return options.cancel && options.cancel->load(std::memory_order_relaxed); };
 
   const int crop_x = scene.camera.crop_x(), crop_y = scene.camera.crop_y();
   const uint64_t film_w = uint64_t(scene.camera.film_width());
-  // Passes [p0, p1) of one tile, added to each pixel's sum in pass order: the sums are the same
-  // whether a pass covers the image before the next begins or a tile runs all its passes.
+  // Passes p0, p0 + stride, ... below p1 of one tile, added to each pixel's sum.
   std::vector<int> pixel_passes(size_t(w) * h, 0);
-  auto render_tile = [&](int tile, int p0, int p1) {
+  auto render_tile = [&](int tile, int p0, int p1, int stride) {
     const int x0 = (tile % tiles_x) * ts, y0 = (tile / tiles_x) * ts;
     uint64_t tile_rays = 0, tile_bad = 0;
-    for (int pass = p0; pass < p1; ++pass) {
+    for (int pass = p0; pass < p1; pass += stride) {
       if (cancelled()) break;
       for (int y = y0; y < std::min(y0 + ts, h); ++y) {
         for (int x = x0; x < std::min(x0 + ts, w); ++x) {
@@ -71,8 +81,8 @@ Image render_image(const Scene& scene, Integrator& integrator, const RenderOptio
             L = Color(0.0f);
             ++tile_bad;
           }
-          sum[pixel] += glm::dvec3(L);
-          for (int a = 0; a < (want_aov ? kA : 0); ++a) aov_sum[pixel * kA + size_t(a)] += aov[a];
+          for (int c = 0; c < 3; ++c) sum[pixel * 3 + size_t(c)] += to_fixed(L[c]);
+          for (int a = 0; a < (want_aov ? kA : 0); ++a) aov_sum[pixel * kA + size_t(a)] += to_fixed(aov[a]);
           ++pixel_passes[pixel];
           tile_rays += sampler.rays;
         }
@@ -83,82 +93,93 @@ Image render_image(const Scene& scene, Integrator& integrator, const RenderOptio
     rays += tile_rays;
     bad += tile_bad;
   };
-  auto finish_pass = [&](int passes) {
-    stats.passes = passes;
-    if (timed) progress.set(std::min(elapsed(), options.time_limit));
-    if (options.on_pass) {
-      Image mean(w, h);
-      for (size_t i = 0; i < sum.size(); ++i) mean.pixels[i] = Color(sum[i] / double(passes));
-      integrator.resolve(mean, pixel_passes);
-      options.on_pass(passes, elapsed(), mean);
+  auto whole_passes = [&] { return *std::min_element(pixel_passes.begin(), pixel_passes.end()); };
+  // Each pixel is the mean of its own passes (after an interruption, some pixels have one more).
+  auto mean_image = [&](Image& image) {
+    for (size_t i = 0; i < pixel_passes.size(); ++i) {
+      if (pixel_passes[i] == 0) continue;
+      const double inv = 1.0 / double(pixel_passes[i]);
+      image.pixels[i] = Color(float(from_fixed(sum[i * 3]) * inv), float(from_fixed(sum[i * 3 + 1]) * inv),
+                              float(from_fixed(sum[i * 3 + 2]) * inv));
     }
+    integrator.resolve(image, pixel_passes);
   };
   const bool progressive = integrator.progressive();
-  const PreprocessContext pass_context{options.seed, options.quiet, options.cancel};
+  const PreprocessContext pass_context{options.seed, options.quiet || !cluster.root(), options.cancel, rank};
+  bool stopped = false;  // a progressive pass's preparation was cancelled
   if (!timed && !options.on_pass && !progressive) {
-    // A fixed pass count: each tile runs a group of passes, with a barrier only between groups
-    // (an interrupted render keeps every finished pass; all tiles have started the group).
+    // A fixed pass count: each tile runs a group of this rank's passes, with a barrier only
+    // between groups (an interrupted render keeps every finished pass).
     constexpr int kGroup = 8;
-    for (int p0 = 0; p0 < options.spp && !cancelled(); p0 += kGroup) {
-      const int p1 = std::min(options.spp, p0 + kGroup);
+    for (int p0 = rank; p0 < options.spp && !cancelled(); p0 += kGroup * ranks) {
+      const int p1 = std::min(options.spp, p0 + kGroup * ranks);
       tbb::parallel_for(tbb::blocked_range<int>(0, tile_count), [&](const tbb::blocked_range<int>& range) {
-        for (int tile = range.begin(); tile != range.end(); ++tile) render_tile(tile, p0, p1);
+        for (int tile = range.begin(); tile != range.end(); ++tile) render_tile(tile, p0, p1, ranks);
       });
     }
-    stats.interrupted = cancelled();
-    stats.passes = *std::min_element(pixel_passes.begin(), pixel_passes.end());
   } else {
-    double last_pass_start = 0;
-    for (int pass = 0;; ++pass) {
-      if (!timed && pass >= options.spp) break;
-      if (timed && pass > 0) {
-        // The next pass would overrun the budget. The last pass's time counts too: a progressive
+    // Rounds of one pass per rank: round k is passes kN .. kN + N - 1. Before each round the
+    // ranks decide together whether to go on: rank 0's clock against the budget, and a stop
+    // requested on any rank (Ctrl-C, SIGTERM), so that no rank renders a pass that is dropped.
+    double last_round_start = 0;
+    for (int round = 0;; ++round) {
+      if (!timed && round * ranks >= options.spp) break;
+      bool stop = cancelled() || stopped;
+      if (timed && round > 0 && cluster.root()) {
+        // The next round would overrun the budget. The last round's time counts too: a progressive
         // integrator's first photon pass ran before the render (preprocess), the others in it.
         const double t = elapsed();
-        if (t + std::max(t / pass, t - last_pass_start) > options.time_limit) break;
+        if (t + std::max(t / round, t - last_round_start) > options.time_limit) stop = true;
       }
-      last_pass_start = elapsed();
+      if (cluster.any(stop)) break;
+      last_round_start = elapsed();
+      const int pass = round * ranks + rank;
+      if (!timed && pass >= options.spp) continue;  // the last round of a fixed count: not all ranks
       if (progressive && !integrator.begin_pass(scene, pass, pass_context)) {
-        stats.interrupted = true;
-        stats.passes = pass;
-        break;
+        stopped = true;
+        continue;
       }
       tbb::parallel_for(tbb::blocked_range<int>(0, tile_count), [&](const tbb::blocked_range<int>& range) {
-        for (int tile = range.begin(); tile != range.end(); ++tile) render_tile(tile, pass, pass + 1);
+        for (int tile = range.begin(); tile != range.end(); ++tile) render_tile(tile, pass, pass + 1, 1);
       });
-      if (cancelled()) {
-        stats.interrupted = true;
-        // The cancel may have come after the last tile of this pass: then the pass is whole.
-        // A pass cut short: the pixels it reached keep it (each pixel is divided by its own count).
-        if (*std::min_element(pixel_passes.begin(), pixel_passes.end()) > pass) {
-          finish_pass(pass + 1);
-        } else {
-          stats.passes = pass;
-        }
-        break;
+      if (timed) progress.set(std::min(elapsed(), options.time_limit));
+      // A pass counts once every pixel has it: a cancel may come after the pass's last tile.
+      if (options.on_pass && whole_passes() > pass) {
+        Image mean(w, h);
+        mean_image(mean);
+        options.on_pass(pass + 1, elapsed(), mean);
       }
-      finish_pass(pass + 1);
     }
   }
   progress.finish();
+  stats.interrupted = cluster.any(cancelled() || stopped);
+  // Rank 0 gathers the sums, the pass counts and the counters of all ranks.
+  const double gather_start = elapsed();
+  cluster.sum_to_root(sum);
+  cluster.sum_to_root(pixel_passes);
+  if (want_aov) cluster.sum_to_root(aov_sum);
+  std::vector<uint64_t> counters{rays.load(), bad.load()};
+  cluster.sum_to_root(counters);
   stats.seconds = elapsed();
-  stats.rays = rays;
-  stats.bad_samples = bad;
+  stats.gather_seconds = stats.seconds - gather_start;
+  if (!cluster.root()) return Image();
+  stats.rays = counters[0];
+  stats.bad_samples = counters[1];
+  stats.passes = whole_passes();
   stats.samples = 0;
-  // Each pixel is the mean of its own passes (after an interruption, some pixels have one more).
+  for (int n : pixel_passes) stats.samples += uint64_t(n);
   Image image(w, h);
-  if (want_aov) aovs->assign(2, Image(w, h));
-  for (size_t i = 0; i < sum.size(); ++i) {
-    stats.samples += uint64_t(pixel_passes[i]);
-    if (pixel_passes[i] == 0) continue;
-    const double inv = 1.0 / double(pixel_passes[i]);
-    image.pixels[i] = Color(sum[i] * inv);
-    if (want_aov) {
-      (*aovs)[0].pixels[i] = Color(aov_sum[i * kA], aov_sum[i * kA + 1], 0.0f) * float(inv);
-      (*aovs)[1].pixels[i] = Color(aov_sum[i * kA + 2], aov_sum[i * kA + 3], 0.0f) * float(inv);
+  mean_image(image);
+  if (want_aov) {
+    aovs->assign(2, Image(w, h));
+    for (size_t i = 0; i < pixel_passes.size(); ++i) {
+      if (pixel_passes[i] == 0) continue;
+      const double inv = 1.0 / double(pixel_passes[i]);
+      auto mean = [&](int a) { return float(from_fixed(aov_sum[i * kA + size_t(a)]) * inv); };
+      (*aovs)[0].pixels[i] = Color(mean(0), mean(1), 0.0f);
+      (*aovs)[1].pixels[i] = Color(mean(2), mean(3), 0.0f);
     }
   }
-  integrator.resolve(image, pixel_passes);
   return image;
 }
 

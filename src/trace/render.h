@@ -3,6 +3,7 @@
 #include <atomic>
 #include <functional>
 #include "core/image.h"
+#include "trace/cluster.h"
 #include "trace/integrator.h"
 
 namespace caustica {
@@ -13,8 +14,11 @@ struct RenderOptions {
   uint64_t seed = 0;
   bool quiet = false;
   int tile_size = 16;
-  const std::atomic<bool>* cancel = nullptr;
-  bool aov = false;  // collect the integrator's per-sample AOVs (Sampler::aov)  // set (e.g. by SIGINT) to stop after this tile
+  const std::atomic<bool>* cancel = nullptr;  // set (e.g. by SIGINT) to stop after this tile
+  bool aov = false;  // collect the integrator's per-sample AOVs (Sampler::aov)
+  // The processes rendering this image (null: this one alone). Rank r of N renders passes
+  // r, r + N, ...; rank 0 receives the image and the statistics of all, the others an empty image.
+  const Cluster* cluster = nullptr;
   // Called after each completed pass with the running mean; may be null.
   std::function<void(int passes, double seconds, const Image& mean)> on_pass;
 };
@@ -26,9 +30,11 @@ struct RenderStats {
   int passes = 0;
   uint64_t bad_samples = 0;  // NaN, infinite or negative radiance, dropped
   bool interrupted = false;
+  double gather_seconds = 0;  // MPI: summing the ranks' images on rank 0 (in `seconds`)
 };
 
-// Deterministic: the image for a scene, integrator and seed is the same for any thread count.
+// Deterministic: the image for a scene, integrator and seed is the same for any thread count and
+// any number of ranks (pixel sums are exact: core/fixed_sum.h).
 // Sub-pixel position of sample `sample` of a pixel: a per-pixel rotation of the R2 sequence.
 Vec2 pixel_jitter(uint64_t pixel, uint64_t sample, uint64_t seed);
 

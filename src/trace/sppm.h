@@ -41,6 +41,7 @@ class SppmIntegrator final : public Integrator {
   Color Li(const Ray& ray, const Scene& scene, Sampler& sampler) const override;
   // Adds the photon estimate tau / (passes pi r^2) to each pixel.
   void resolve(Image& mean, const std::vector<int>& pixel_passes) const override;
+  bool passes_independent() const override { return false; }
   std::string name() const override { return "sppm"; }
   std::string describe() const override;
 

@@ -39,11 +39,13 @@ inline const char* kLitFloorScene = R"({
   ]
 })";
 
-// True when the folder holds nothing but the captured output and scene files: no image was written.
+// True when the folder holds nothing but the captured output, scene files and scripts: no image
+// (nor its temporary file) was written.
 inline bool no_images_left(const TempDir& dir) {
   for (const auto& e : std::filesystem::directory_iterator(dir.path())) {
     const std::string name = e.path().filename().string();
-    if (name != "stdout.txt" && name != "stderr.txt" && e.path().extension() != ".json") return false;
+    const auto ext = e.path().extension();
+    if (name != "stdout.txt" && name != "stderr.txt" && ext != ".json" && ext != ".sh") return false;
   }
   return true;
 }
