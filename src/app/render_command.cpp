@@ -99,10 +99,15 @@ int run_render(const RenderArgs& args) {
   if (g_interrupted) stats.interrupted = true;
   // The shell's convention: 128 + the signal (130 for SIGINT, 143 for SIGTERM).
   const int interrupted_code = 128 + (g_signal.load() != 0 ? g_signal.load() : SIGINT);
-  // Rank 0 writes the image of all ranks; the others are done.
-  if (!cluster.root()) return stats.interrupted ? interrupted_code : 0;
+  // Rank 0 writes the image of all ranks. The others wait until it has: a rank that exits with
+  // an error code (an interrupted one does) makes mpirun kill the rest of the job.
+  if (!cluster.root()) {
+    cluster.barrier();
+    return stats.interrupted ? interrupted_code : 0;
+  }
   if (stats.interrupted && stats.passes == 0) {
     std::cerr << "interrupted before the first pass was complete: no image written\n";
+    cluster.barrier();
     return interrupted_code;
   }
   write_image(output, image, args.exposure);
@@ -114,6 +119,7 @@ int run_render(const RenderArgs& args) {
     write_image(stem + ".radius.exr", aovs[1]);
     if (!args.common.quiet) std::cout << "aov: " << stem << ".photons.exr, " << stem << ".radius.exr\n";
   }
+  cluster.barrier();
 
   if (!args.common.quiet) {
     std::ostringstream s;

@@ -169,6 +169,12 @@ void Cluster::sum_to_root(std::vector<uint64_t>& values) const {
 #endif
 }
 
+void Cluster::barrier() const {
+#ifdef CAUSTICA_MPI
+  if (distributed()) MPI_Barrier(MPI_COMM_WORLD);
+#endif
+}
+
 void Cluster::abort(int code) const {
 #ifdef CAUSTICA_MPI
   if (joined_ && distributed()) MPI_Abort(MPI_COMM_WORLD, code);

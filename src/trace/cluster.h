@@ -40,6 +40,8 @@ class Cluster {
   void sum_to_root(std::vector<FixedSum>& values) const;
   void sum_to_root(std::vector<int>& values) const;
   void sum_to_root(std::vector<uint64_t>& values) const;
+  // Returns on every rank once all have called it.
+  void barrier() const;
   // Ends the whole job at once (MPI_Abort) with `code`; alone, exits the process with it.
   [[noreturn]] void abort(int code) const;
 

@@ -119,11 +119,22 @@ TEST_CASE("mpi: a rank that fails ends the run with its error and no image", "[a
   }
 }
 
-TEST_CASE("mpi: SIGTERM to mpirun (a scheduler's time limit) writes the passes completed", "[app][mpi]") {
+TEST_CASE("mpi: SIGTERM (a scheduler's time limit) writes the passes completed by all ranks", "[app][mpi]") {
   if (!mpi_available()) return;
   test::TempDir dir;
-  const auto r = run_caustica("render '" + scene_path() + "' --width 32 --height 32 --spp 1000000 --threads 1 -o out.pfm",
-                              dir, "timeout -s TERM 4 " + kMpirun + "-np 2 ");
+  const std::string args =
+      "render '" + scene_path() + "' --width 32 --height 32 --spp 1000000 --threads 1 -o out.pfm";
+  std::string prefix;
+  SECTION("to mpirun, which passes it on to the ranks") {
+    // --foreground: timeout signals mpirun alone. Without it, it signals its whole process group
+    // as well, mpirun receives SIGTERM twice, and Open MPI takes a second signal as "kill now".
+    prefix = "timeout --foreground -s TERM 4 " + kMpirun + "-np 2 ";
+  }
+  SECTION("to every rank, as Slurm sends it") {
+    dir.write("term-after-3s.sh", "(sleep 3; kill -TERM $$) &\nexec \"$@\"\n");
+    prefix = kMpirun + "-np 2 sh term-after-3s.sh ";
+  }
+  const auto r = run_caustica(args, dir, prefix);
   INFO("stdout: " << r.out << "\nstderr: " << r.err);
   CHECK(r.exit_code != 0);
   CHECK(r.out.find("interrupted: passes completed so far") != std::string::npos);
