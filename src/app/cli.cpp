@@ -159,8 +159,8 @@ int run_cli(int argc, char** argv) {
     return app.exit(e) == 0 ? 0 : 1;
   }
   const Cluster& cluster = Cluster::world();
-  if (cluster.distributed() && !render->parsed()) {
-    if (cluster.root()) std::cerr << "error: only `caustica render` runs on several MPI ranks; start the others alone\n";
+  if (cluster.distributed() && !render->parsed() && !converge->parsed()) {
+    if (cluster.root()) std::cerr << "error: only `caustica render` and `converge` run on several MPI ranks\n";
     return 1;
   }
   // On several ranks an error ends the whole job (MPI_Abort): the other ranks would otherwise

@@ -46,9 +46,14 @@ static void write_text(const fs::path& path, const std::string& text) {
 }
 
 int run_converge(const ConvergeArgs& args) {
-  std::error_code ec;
-  fs::create_directories(args.out_dir, ec);
-  if (!fs::is_directory(args.out_dir)) throw InputError(args.out_dir + ": cannot create the output folder");
+  // Under MPI each integrator's passes are split among the ranks; rank 0 measures and writes.
+  const Cluster& cluster = Cluster::world();
+  const bool root = cluster.root();
+  if (root) {
+    std::error_code ec;
+    fs::create_directories(args.out_dir, ec);
+    if (!fs::is_directory(args.out_dir)) throw InputError(args.out_dir + ": cannot create the output folder");
+  }
   const Image reference = read_image(args.reference);
   LoadedScene loaded = load_scene_with(args.common);
   Scene& scene = *loaded.scene;
@@ -71,6 +76,16 @@ int run_converge(const ConvergeArgs& args) {
   // Create every integrator first, so that a bad name fails before any rendering.
   std::vector<std::unique_ptr<Integrator>> integrators;
   for (const std::string& name : args.integrators) integrators.push_back(integrator_for(scene, name, args.common, true));
+  {
+    std::ostringstream command_settings;
+    command_settings << "converge " << args.reference << " time=" << args.time << std::setprecision(17);
+    for (const std::string& name : args.integrators) command_settings << " " << name;
+    for (double c : checkpoints) command_settings << " @" << c;
+    std::vector<const Integrator*> all;
+    for (const auto& integ : integrators) all.push_back(integ.get());
+    check_ranks_agree(args.common, command_settings.str(), all);
+  }
+  const bool quiet = args.common.quiet || !root;
 
   const int threads = thread_count(args.common);
   tbb::global_control control(tbb::global_control::max_allowed_parallelism, size_t(threads));
@@ -81,9 +96,10 @@ int run_converge(const ConvergeArgs& args) {
   report.facts = {{"scene", args.common.scene},
                   {"reference", args.reference},
                   {"resolution", std::to_string(scene.render.width) + "x" + std::to_string(scene.render.height)},
-                  {"threads", std::to_string(threads)},
+                  {"threads", std::to_string(threads) + (cluster.distributed() ? " per rank, " +
+                                  std::to_string(cluster.size()) + " MPI ranks" : "")},
                   {"seed", std::to_string(scene.render.seed)}};
-  write_image((fs::path(args.out_dir) / "reference.png").string(), reference);
+  if (root) write_image((fs::path(args.out_dir) / "reference.png").string(), reference);
   report.images.push_back({"reference", "reference.png"});
   std::vector<ReportImage> error_images;
 
@@ -91,7 +107,7 @@ int run_converge(const ConvergeArgs& args) {
     Integrator& integ = *integrators[i];
     const std::string name = args.integrators[i];
     const auto t0 = std::chrono::steady_clock::now();
-    integ.preprocess(scene, {scene.render.seed, args.common.quiet});
+    integ.preprocess(scene, {scene.render.seed, quiet, nullptr, cluster.rank()});
     const double pre = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     size_t next = 0;
     ReportSeries series{name, {}};
@@ -99,7 +115,7 @@ int run_converge(const ConvergeArgs& args) {
       const ErrorMetrics m = compare_images(mean, reference);
       rows.push_back({name, seconds, passes, m.rmse, m.relmse});
       series.points.push_back({seconds, m.relmse, m.rmse, passes});
-      if (!args.common.quiet) {
+      if (!quiet) {
         std::cerr << name << ": " << std::fixed << std::setprecision(1) << seconds << " s, " << passes
                   << " passes, relMSE " << std::scientific << std::setprecision(3) << m.relmse << std::defaultfloat
                   << "\n";
@@ -108,16 +124,18 @@ int run_converge(const ConvergeArgs& args) {
     RenderOptions options;
     options.time_limit = std::max(1e-3, args.time - pre);
     options.seed = scene.render.seed;
-    options.quiet = args.common.quiet;
+    options.quiet = quiet;
+    options.cluster = &cluster;
+    // A mean image at the first pass past each checkpoint (on rank 0's clock).
+    options.want_pass = [&](double seconds) { return next < checkpoints.size() && pre + seconds >= checkpoints[next]; };
     options.on_pass = [&](int passes, double seconds, const Image& mean) {
       const double t = pre + seconds;
-      if (next < checkpoints.size() && t >= checkpoints[next]) {
-        record(t, passes, mean);
-        while (next < checkpoints.size() && t >= checkpoints[next]) ++next;
-      }
+      record(t, passes, mean);
+      while (next < checkpoints.size() && t >= checkpoints[next]) ++next;
     };
     RenderStats stats;
     const Image image = render_image(scene, integ, options, stats);
+    if (!root) continue;
     const double total = pre + stats.seconds;
     if (series.points.empty() || series.points.back().passes != stats.passes) record(total, stats.passes, image);
     report.series.push_back(series);
@@ -126,7 +144,7 @@ int run_converge(const ConvergeArgs& args) {
       rate << "relMSE ~ t^" << std::fixed << std::setprecision(2) << slope << " from " << std::setprecision(1)
            << 0.25 * total << " s on" << (slope > -0.2 ? " (flattening: a bias floor)" : "");
       report.facts.emplace_back(name + " rate", rate.str());
-      if (!args.common.quiet) std::cerr << name << ": " << rate.str() << "\n";
+      if (!quiet) std::cerr << name << ": " << rate.str() << "\n";
     }
     // Variants such as photon:progressive=false get file names without ':' and '='.
     std::string file = name;
@@ -140,10 +158,11 @@ int run_converge(const ConvergeArgs& args) {
     report.facts.emplace_back(name, std::to_string(stats.passes) + " passes in " + std::to_string(total) + " s (" +
                                         std::to_string(pre) + " s preprocess)");
   }
+  if (!root) return 0;
   report.images.insert(report.images.end(), error_images.begin(), error_images.end());
   write_text(fs::path(args.out_dir) / "convergence.csv", convergence_csv(rows));
   write_report(args.out_dir, report);
-  if (!args.common.quiet) std::cout << "wrote " << (fs::path(args.out_dir) / "index.html").string() << "\n";
+  if (!quiet) std::cout << "wrote " << (fs::path(args.out_dir) / "index.html").string() << "\n";
   return 0;
 }
 

@@ -32,12 +32,14 @@ int run_render(const RenderArgs& args) {
   Scene& scene = *loaded.scene;
   const RenderSettings& rs = scene.render;
 
+  const Cluster& cluster = Cluster::world();
   const std::string output = !args.output.empty()
       ? args.output
       : std::filesystem::path(args.common.scene).stem().string() + ".png";
-  check_output_path(output);
+  // Rank 0 alone writes the image and compares it: other machines need neither path.
+  if (cluster.root()) check_output_path(output);
   Image reference;
-  if (!args.reference.empty()) {
+  if (!args.reference.empty() && cluster.root()) {
     reference = read_image(args.reference);
     if (reference.width != rs.width || reference.height != rs.height) {
       throw InputError(args.reference + ": reference is " + std::to_string(reference.width) + "x" +
@@ -52,23 +54,10 @@ int run_render(const RenderArgs& args) {
   }
   // Under mpirun: every rank must render the same image, and the integrator's passes must not
   // depend on one another.
-  const Cluster& cluster = Cluster::world();
-  if (cluster.distributed()) {
-    if (!integrator->passes_independent()) {
-      throw InputError("integrator \"" + integrator->name() +
-                       "\" renders its passes in order (each pass's radii follow from the last): run it on one rank");
-    }
-    std::string settings = args.common.scene + "|" + integrator->name();
-    for (const auto& [key, value] : args.common.integrator_overrides) settings += "|" + key + "=" + value.dump();
-    const uint64_t fingerprint =
-        hash_seed(std::hash<std::string>{}(settings),
-                  hash_seed(uint64_t(rs.width) << 32 | uint64_t(rs.height), uint64_t(rs.spp), rs.seed),
-                  std::hash<double>{}(args.time ? *args.time : 0.0) ^ (args.aov ? 1 : 0));
-    if (!cluster.same_everywhere(fingerprint)) {
-      throw InputError("the ranks were started with different scenes or settings (scene, integrator, size, spp, seed, "
-                       "--time, --aov): every rank must render the same image");
-    }
-  }
+  std::ostringstream command_settings;
+  command_settings << "render " << integrator->name() << " time=" << (args.time ? *args.time : 0.0)
+                   << " aov=" << args.aov;
+  check_ranks_agree(args.common, command_settings.str(), {integrator.get()});
 
   const int threads = thread_count(args.common);
   tbb::global_control control(tbb::global_control::max_allowed_parallelism, size_t(threads));
@@ -93,7 +82,10 @@ int run_render(const RenderArgs& args) {
   options.aov = args.aov;
   RenderStats stats;
   std::vector<Image> aovs;
-  Image image = g_interrupted ? Image(rs.width, rs.height) : render_image(scene, *integrator, options, stats, &aovs);
+  // Under MPI every rank enters the render, which agrees on a stop (a rank's preprocess may have
+  // been interrupted while the others' was not).
+  Image image = g_interrupted && !cluster.distributed() ? Image(rs.width, rs.height)
+                                                        : render_image(scene, *integrator, options, stats, &aovs);
   std::signal(SIGINT, previous_int);
   std::signal(SIGTERM, previous_term);
   if (g_interrupted) stats.interrupted = true;

@@ -1,6 +1,8 @@
 // Scene and integrator set-up from the command line.
 #include "app/scene_setup.h"
 #include <algorithm>
+#include <fstream>
+#include <sstream>
 #include <iostream>
 #include <tbb/info.h>
 #include <thread>
@@ -107,12 +109,44 @@ std::unique_ptr<Integrator> integrator_for(const Scene& scene, const std::string
 
 int thread_count(const SceneOptions& options) {
   if (options.threads) return *options.threads;
-  // The cores this process may run on. When a launcher bound it to fewer than the machine's
-  // (mpirun binds each rank to a core or a socket), those are its share; otherwise the ranks
-  // on this machine share all its cores.
+  // The ranks on this machine share its cores, and no rank takes more than the cores it may run
+  // on (mpirun binds ranks to a core or a socket).
   const int usable = tbb::info::default_concurrency();
-  if (usable < int(std::thread::hardware_concurrency())) return usable;
-  return std::max(1, usable / Cluster::world().local_size());
+  const int share = int(std::thread::hardware_concurrency()) / Cluster::world().local_size();
+  return std::max(1, std::min(usable, share));
+}
+
+void check_ranks_agree(const SceneOptions& options, const std::string& command_settings,
+                       const std::vector<const Integrator*>& integrators) {
+  const Cluster& cluster = Cluster::world();
+  if (!cluster.distributed()) return;
+  for (const Integrator* integrator : integrators) {
+    if (!integrator->passes_independent()) {
+      throw InputError("integrator \"" + integrator->name() +
+                       "\" renders its passes in order (each pass's radii follow from the last): run it on one rank");
+    }
+  }
+  // Everything that shapes the image; not --threads, -q or the output's name.
+  std::ostringstream s;
+  std::ifstream file(options.scene, std::ios::binary);
+  s << options.scene << "\n" << file.rdbuf() << "\n";
+  auto put = [&](const char* name, const auto& v) {
+    s << name << "=";
+    if (v) s << *v;
+    s << "\n";
+  };
+  put("spp", options.spp);
+  put("width", options.width);
+  put("height", options.height);
+  put("max_depth", options.max_depth);
+  put("seed", options.seed);
+  for (const auto& [key, value] : options.integrator_overrides) s << key << "=" << value.dump() << "\n";
+  for (const auto& [name, value] : options.mitsuba.xml.defines) s << "-D" << name << "=" << value << "\n";
+  s << options.mitsuba.ignore_unsupported << options.accel << "\n" << command_settings;
+  if (!cluster.same_everywhere(std::hash<std::string>{}(s.str()))) {
+    throw InputError("the ranks were started with different scene files or settings: every rank must render the "
+                     "same image (same scene file, options, integrator, --spp, --seed, --time)");
+  }
 }
 
 }  // namespace caustica

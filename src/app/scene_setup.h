@@ -35,4 +35,10 @@ std::unique_ptr<Integrator> integrator_for(const Scene& scene, const std::string
 
 int thread_count(const SceneOptions& options);
 
+// Under MPI (a no-op for one process): refuses integrators whose passes depend on one another,
+// and ranks given different scene files (their bytes), scene options or `command_settings` (what
+// the command adds: integrators, --time, ...). A refusal is an InputError on every rank.
+void check_ranks_agree(const SceneOptions& options, const std::string& command_settings,
+                       const std::vector<const Integrator*>& integrators);
+
 }  // namespace caustica

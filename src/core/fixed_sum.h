@@ -3,7 +3,7 @@
 // for bit however its terms are grouped: by pass, by tile, or across MPI ranks.
 //
 // Range: values are clamped to +-1e12 and a sum may reach about 9.2e18 (2^63), so a pixel holds
-// over a million samples at the clamp. Resolution: values below 2^-64 (5.4e-20) vanish, and a
+// over nine million samples at the clamp (beyond, add_saturating holds the sum at its limit). Resolution: values below 2^-64 (5.4e-20) vanish, and a
 // float's bits below 2^-64 are dropped, so floats from 2^-41 (4.5e-13) up are held exactly.
 #pragma once
 #include <algorithm>
@@ -21,6 +21,15 @@ inline FixedSum to_fixed(double v) {
   if (!(v == v)) return 0;
   v = std::clamp(v, -kFixedMaxValue, kFixedMaxValue);
   return FixedSum(std::ldexp(v, kFixedFractionBits));
+}
+
+// s += v, held at the largest or smallest FixedSum instead of overflowing (over 9e6 samples at
+// the clamp in one sum); short of that, exact.
+inline void add_saturating(FixedSum& s, FixedSum v) {
+  if (__builtin_add_overflow(s, v, &s)) {
+    constexpr FixedSum kMax = FixedSum((static_cast<unsigned __int128>(1) << 127) - 1);
+    s = v > 0 ? kMax : -kMax - 1;
+  }
 }
 
 // The double nearest a fixed-point sum.

@@ -14,15 +14,6 @@ namespace {
 Cluster g_world;
 
 #ifdef CAUSTICA_MPI
-// Reads a whole number from the environment, or `fallback`.
-int env_int(const char* name, int fallback) {
-  const char* v = std::getenv(name);
-  if (!v || !*v) return fallback;
-  char* end = nullptr;
-  const long n = std::strtol(v, &end, 10);
-  return (*end == '\0' && n > 0 && n < (1 << 24)) ? int(n) : fallback;
-}
-
 // Whether an MPI launcher started this process. Open MPI's singleton start-up (MPI_Init without
 // mpirun) spawns a daemon and can stall in containers, so a lone process never calls MPI_Init.
 bool launched_by_mpi() {
@@ -38,7 +29,7 @@ void add_fixed(void* in, void* inout, int* len, MPI_Datatype*) {
     FixedSum a, b;
     std::memcpy(&a, static_cast<const char*>(in) + size_t(i) * sizeof(FixedSum), sizeof a);
     std::memcpy(&b, static_cast<char*>(inout) + size_t(i) * sizeof(FixedSum), sizeof b);
-    b += a;
+    add_saturating(b, a);
     std::memcpy(static_cast<char*>(inout) + size_t(i) * sizeof(FixedSum), &b, sizeof b);
   }
 }
@@ -70,18 +61,27 @@ void Cluster::init(int& argc, char**& argv) {
     std::cerr << "error: MPI_Init_thread failed\n";
     std::exit(1);
   }
+  if (provided < MPI_THREAD_FUNNELED) {
+    std::cerr << "error: this MPI library does not support threads (MPI_THREAD_FUNNELED)\n";
+    MPI_Abort(MPI_COMM_WORLD, 1);
+  }
   // Errors end the job rather than leave ranks waiting in a collective.
   MPI_Comm_set_errhandler(MPI_COMM_WORLD, MPI_ERRORS_ARE_FATAL);
   g_world.joined_ = true;
   MPI_Comm_rank(MPI_COMM_WORLD, &g_world.rank_);
   MPI_Comm_size(MPI_COMM_WORLD, &g_world.size_);
-  g_world.local_size_ = env_int("OMPI_COMM_WORLD_LOCAL_SIZE", env_int("SLURM_NTASKS_PER_NODE", 1));
+  // The ranks sharing this machine's memory (and cores).
+  MPI_Comm local;
+  MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, g_world.rank_, MPI_INFO_NULL, &local);
+  MPI_Comm_size(local, &g_world.local_size_);
+  MPI_Comm_free(&local);
 #else
   (void)argc;
   (void)argv;
   // Started by a launcher of several processes without MPI support: each renders the whole
   // image by itself. Rank 0 says so.
-  for (const auto& [size, rank] : {std::pair{"OMPI_COMM_WORLD_SIZE", "OMPI_COMM_WORLD_RANK"}, std::pair{"PMI_SIZE", "PMI_RANK"}}) {
+  for (const auto& [size, rank] : {std::pair{"OMPI_COMM_WORLD_SIZE", "OMPI_COMM_WORLD_RANK"},
+                                   std::pair{"PMI_SIZE", "PMI_RANK"}, std::pair{"SLURM_NTASKS", "SLURM_PROCID"}}) {
     const char* n = std::getenv(size);
     const char* r = std::getenv(rank);
     if (n && r && std::atoi(n) > 1 && std::atoi(r) == 0) {

@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <stdexcept>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include "trace/progress.h"
@@ -27,9 +26,6 @@ Image render_image(const Scene& scene, Integrator& integrator, const RenderOptio
   const Cluster alone;
   const Cluster& cluster = options.cluster ? *options.cluster : alone;
   const int rank = cluster.rank(), ranks = cluster.size();
-  if (cluster.distributed() && options.on_pass) {
-    throw std::logic_error("render_image: per-pass images (on_pass) are not gathered across ranks");
-  }
   const int w = scene.camera.width(), h = scene.camera.height();
   const int ts = options.tile_size;
   const int tiles_x = (w + ts - 1) / ts, tiles_y = (h + ts - 1) / ts;
@@ -81,8 +77,8 @@ Image render_image(const Scene& scene, Integrator& integrator, const RenderOptio
             L = Color(0.0f);
             ++tile_bad;
           }
-          for (int c = 0; c < 3; ++c) sum[pixel * 3 + size_t(c)] += to_fixed(L[c]);
-          for (int a = 0; a < (want_aov ? kA : 0); ++a) aov_sum[pixel * kA + size_t(a)] += to_fixed(aov[a]);
+          for (int c = 0; c < 3; ++c) add_saturating(sum[pixel * 3 + size_t(c)], to_fixed(L[c]));
+          for (int a = 0; a < (want_aov ? kA : 0); ++a) add_saturating(aov_sum[pixel * kA + size_t(a)], to_fixed(aov[a]));
           ++pixel_passes[pixel];
           tile_rays += sampler.rays;
         }
@@ -93,16 +89,39 @@ Image render_image(const Scene& scene, Integrator& integrator, const RenderOptio
     rays += tile_rays;
     bad += tile_bad;
   };
-  auto whole_passes = [&] { return *std::min_element(pixel_passes.begin(), pixel_passes.end()); };
   // Each pixel is the mean of its own passes (after an interruption, some pixels have one more).
-  auto mean_image = [&](Image& image) {
-    for (size_t i = 0; i < pixel_passes.size(); ++i) {
-      if (pixel_passes[i] == 0) continue;
-      const double inv = 1.0 / double(pixel_passes[i]);
-      image.pixels[i] = Color(float(from_fixed(sum[i * 3]) * inv), float(from_fixed(sum[i * 3 + 1]) * inv),
-                              float(from_fixed(sum[i * 3 + 2]) * inv));
+  auto mean_image = [&](const std::vector<FixedSum>& sums, const std::vector<int>& counts) {
+    Image image(w, h);
+    for (size_t i = 0; i < counts.size(); ++i) {
+      if (counts[i] == 0) continue;
+      const double inv = 1.0 / double(counts[i]);
+      image.pixels[i] = Color(float(from_fixed(sums[i * 3]) * inv), float(from_fixed(sums[i * 3 + 1]) * inv),
+                              float(from_fixed(sums[i * 3 + 2]) * inv));
     }
-    integrator.resolve(image, pixel_passes);
+    integrator.resolve(image, counts);
+    return image;
+  };
+  // on_pass: the running mean of all ranks' passes, on rank 0, when every pixel has had the same
+  // number of passes. A collective call: every rank makes it after each round.
+  int reported = 0;
+  auto report_pass = [&] {
+    const bool wanted = cluster.root() && (!options.want_pass || options.want_pass(elapsed()));
+    if (!cluster.any(wanted)) return;
+    std::vector<FixedSum> sums_copy;
+    std::vector<int> counts_copy;
+    if (cluster.distributed()) {
+      sums_copy = sum;
+      counts_copy = pixel_passes;
+      cluster.sum_to_root(sums_copy);
+      cluster.sum_to_root(counts_copy);
+      if (!cluster.root()) return;
+    }
+    const std::vector<FixedSum>& sums = cluster.distributed() ? sums_copy : sum;
+    const std::vector<int>& counts = cluster.distributed() ? counts_copy : pixel_passes;
+    const auto [fewest, most] = std::minmax_element(counts.begin(), counts.end());
+    if (*fewest <= reported || *fewest != *most) return;  // no new pass, or one cut short
+    reported = *fewest;
+    options.on_pass(*fewest, elapsed(), mean_image(sums, counts));
   };
   const bool progressive = integrator.progressive();
   const PreprocessContext pass_context{options.seed, options.quiet || !cluster.root(), options.cancel, rank};
@@ -124,36 +143,38 @@ Image render_image(const Scene& scene, Integrator& integrator, const RenderOptio
     double last_round_start = 0;
     for (int round = 0;; ++round) {
       if (!timed && round * ranks >= options.spp) break;
-      bool stop = cancelled() || stopped;
-      if (timed && round > 0 && cluster.root()) {
+      // A stop asked for on any rank; this call also waits for the slowest rank's last pass.
+      if (cluster.any(cancelled() || stopped)) break;
+      if (timed && round > 0) {
         // The next round would overrun the budget. The last round's time counts too: a progressive
         // integrator's first photon pass ran before the render (preprocess), the others in it.
-        const double t = elapsed();
-        if (t + std::max(t / round, t - last_round_start) > options.time_limit) stop = true;
+        bool over = false;
+        if (cluster.root()) {
+          const double t = elapsed();
+          over = t + std::max(t / round, t - last_round_start) > options.time_limit;
+        }
+        if (cluster.any(over)) break;
       }
-      if (cluster.any(stop)) break;
       last_round_start = elapsed();
       const int pass = round * ranks + rank;
-      if (!timed && pass >= options.spp) continue;  // the last round of a fixed count: not all ranks
-      if (progressive && !integrator.begin_pass(scene, pass, pass_context)) {
-        stopped = true;
-        continue;
+      // The last round of a fixed count may have no pass for some ranks.
+      const bool mine = timed || pass < options.spp;
+      if (mine && progressive && !integrator.begin_pass(scene, pass, pass_context)) stopped = true;
+      if (mine && !stopped) {
+        tbb::parallel_for(tbb::blocked_range<int>(0, tile_count), [&](const tbb::blocked_range<int>& range) {
+          for (int tile = range.begin(); tile != range.end(); ++tile) render_tile(tile, pass, pass + 1, 1);
+        });
       }
-      tbb::parallel_for(tbb::blocked_range<int>(0, tile_count), [&](const tbb::blocked_range<int>& range) {
-        for (int tile = range.begin(); tile != range.end(); ++tile) render_tile(tile, pass, pass + 1, 1);
-      });
       if (timed) progress.set(std::min(elapsed(), options.time_limit));
-      // A pass counts once every pixel has it: a cancel may come after the pass's last tile.
-      if (options.on_pass && whole_passes() > pass) {
-        Image mean(w, h);
-        mean_image(mean);
-        options.on_pass(pass + 1, elapsed(), mean);
-      }
+      // Before the next round's go/stop: a cancel set in on_pass stops the next pass.
+      if (options.on_pass) report_pass();
     }
   }
   progress.finish();
   stats.interrupted = cluster.any(cancelled() || stopped);
-  // Rank 0 gathers the sums, the pass counts and the counters of all ranks.
+  // Rank 0 gathers the sums, the pass counts and the counters of all ranks (timed from when the
+  // last rank is ready).
+  cluster.barrier();
   const double gather_start = elapsed();
   cluster.sum_to_root(sum);
   cluster.sum_to_root(pixel_passes);
@@ -165,11 +186,10 @@ Image render_image(const Scene& scene, Integrator& integrator, const RenderOptio
   if (!cluster.root()) return Image();
   stats.rays = counters[0];
   stats.bad_samples = counters[1];
-  stats.passes = whole_passes();
+  stats.passes = *std::min_element(pixel_passes.begin(), pixel_passes.end());
   stats.samples = 0;
   for (int n : pixel_passes) stats.samples += uint64_t(n);
-  Image image(w, h);
-  mean_image(image);
+  Image image = mean_image(sum, pixel_passes);
   if (want_aov) {
     aovs->assign(2, Image(w, h));
     for (size_t i = 0; i < pixel_passes.size(); ++i) {

@@ -19,8 +19,12 @@ struct RenderOptions {
   // The processes rendering this image (null: this one alone). Rank r of N renders passes
   // r, r + N, ...; rank 0 receives the image and the statistics of all, the others an empty image.
   const Cluster* cluster = nullptr;
-  // Called after each completed pass with the running mean; may be null.
+  // Called on rank 0 after each completed pass (under MPI: round of passes) with the running
+  // mean of all ranks' passes; may be null. With want_pass, only after the passes for which
+  // want_pass(seconds), called on rank 0, is true: each call gathers the ranks' images. Set
+  // on_pass on every rank (the others take part in the gathering).
   std::function<void(int passes, double seconds, const Image& mean)> on_pass;
+  std::function<bool(double seconds)> want_pass;
 };
 
 struct RenderStats {

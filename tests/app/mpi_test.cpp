@@ -3,6 +3,7 @@
 // this build has no MPI or mpirun is not installed (scripts/setup.sh installs it).
 #include <catch2/catch.hpp>
 #include <cstdlib>
+#include <filesystem>
 #include <regex>
 #include <string>
 #include "support/run.h"
@@ -97,8 +98,23 @@ TEST_CASE("mpi: a rank that fails ends the run with its error and no image", "[a
                                 dir, kMpirun + "-np 1 ");
     INFO("stderr: " << r.err);
     CHECK(r.exit_code != 0);
-    CHECK(r.err.find("different scenes or settings") != std::string::npos);
+    CHECK(r.err.find("different scene files or settings") != std::string::npos);
     CHECK(test::no_images_left(dir));
+  }
+  SECTION("the ranks read scene files of the same name that differ (machines without a shared file system)") {
+    std::filesystem::create_directories(dir.path() / "node1");
+    std::filesystem::create_directories(dir.path() / "node2");
+    std::string other = test::kLitFloorScene;
+    other.replace(other.find("[5, 5, 5]"), 9, "[6, 6, 6]");
+    dir.write("node1/scene.json", test::kLitFloorScene);
+    dir.write("node2/scene.json", other);
+    const std::string exe = std::string("'") + CAUSTICA_EXE + "'";
+    const std::string args = " render scene.json --spp 4 -o '" + dir.file("out.png") + "'";
+    const auto r = run_caustica(args + " : -np 1 -wdir node2 " + exe + args, dir, kMpirun + "-np 1 -wdir node1 ");
+    INFO("stderr: " << r.err);
+    CHECK(r.exit_code != 0);
+    CHECK(r.err.find("different scene files or settings") != std::string::npos);
+    CHECK_FALSE(std::filesystem::exists(dir.file("out.png")));
   }
   SECTION("sppm, whose passes depend on one another") {
     const auto r = run_caustica(good + " --integrator sppm", dir, kMpirun + "-np 2 ");
@@ -154,4 +170,39 @@ TEST_CASE("mpi: a build without MPI started by mpirun says that each process ren
   INFO("stderr: " << r.err);
   CHECK(r.exit_code == 0);
   CHECK(r.err.find("built without MPI") != std::string::npos);
+}
+
+TEST_CASE("mpi: converge on two ranks measures the same passes as one process", "[app][mpi]") {
+  if (!mpi_available()) return;
+  test::TempDir dir;
+  dir.write("scene.json", test::kLitFloorScene);
+  const auto ref = run_caustica("render scene.json --integrator path --spp 64 -q -o ref.exr", dir);
+  REQUIRE(ref.exit_code == 0);
+  const std::string args = "converge scene.json --reference ref.exr --integrators path,photon --time 1.5 "
+                           "--checkpoints 0.5,1.5 --threads 1 --seed 3 --out ";
+  const auto ranks = run_caustica(args + "ranks", dir, kMpirun + "-np 2 ");
+  INFO("stderr: " << ranks.err);
+  REQUIRE(ranks.exit_code == 0);
+  const std::string csv = test::read_text(dir.file("ranks/convergence.csv"));
+  INFO("csv: " << csv);
+  // Rows for both integrators; the passes of each row are whole rounds of 2.
+  std::regex row("(path|photon),([0-9.e+-]+),([0-9]+),([0-9.e+-]+),([0-9.e+-]+)");
+  int rows = 0;
+  for (auto it = std::sregex_iterator(csv.begin(), csv.end(), row); it != std::sregex_iterator(); ++it) {
+    ++rows;
+    const int passes = std::stoi((*it)[3]);
+    CHECK(passes % 2 == 0);
+    CHECK(passes >= 2);
+    CHECK(std::stod((*it)[5]) > 0);
+  }
+  CHECK(rows >= 2);
+  CHECK(std::filesystem::exists(dir.file("ranks/index.html")));
+  CHECK(std::filesystem::exists(dir.file("ranks/photon.exr")));
+  // The final images estimate the reference's image: path tracing with many passes on a 16x16
+  // image is within a few percent of the 64-spp reference (its own noise dominates).
+  const auto cmp = run_caustica("compare ranks/path.exr ref.exr --json", dir);
+  REQUIRE(cmp.exit_code == 0);
+  std::smatch m;
+  REQUIRE(std::regex_search(cmp.out, m, std::regex("\"relmse\":([0-9.e+-]+)")));
+  CHECK(std::stod(m[1]) < 0.02);
 }
