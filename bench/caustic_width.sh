@@ -1,12 +1,20 @@
 #!/usr/bin/env bash
 # Width of a caustic line in an image: the full width at half maximum (pixels, interpolated) of
 # the brightest peak in one pixel column, above the column's darkest tenth (the background).
-# usage: bench/caustic_width.sh IMAGE.exr X Y0 HEIGHT   (needs oiiotool, Debian openimageio-tools)
+# usage: bench/caustic_width.sh IMAGE.exr X Y0 HEIGHT          (a column: x = X, y from Y0)
+#        bench/caustic_width.sh --row IMAGE.exr Y X0 WIDTH    (a row: y = Y, x from X0)
+# (needs oiiotool, Debian openimageio-tools). "peak y" is then the peak's x.
 set -euo pipefail
-img=$1 x=$2 y0=$3 h=$4
+if [ "$1" = --row ]; then
+  img=$2 y=$3 y0=$4 w=$5
+  cut="${w}x1+${y0}+${y}"
+else
+  img=$1 x=$2 y0=$3 h=$4
+  cut="1x${h}+${x}+${y0}"
+fi
 tmp=$(mktemp --suffix=.exr)
 trap 'rm -f "$tmp"' EXIT
-oiiotool "$img" --cut "1x${h}+${x}+${y0}" -o "$tmp"
+oiiotool "$img" --cut "$cut" -o "$tmp"
 oiiotool --dumpdata "$tmp" | awk -v y0="$y0" '
   /Pixel/ { v[n++] = ($(NF-2) + $(NF-1) + $NF) / 3 }
   END {
