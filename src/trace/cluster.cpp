@@ -3,6 +3,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <iostream>
+#include <type_traits>
 #include <utility>
 #ifdef CAUSTICA_MPI
 #include <mpi.h>
@@ -153,21 +154,21 @@ void Cluster::sum_to_root(std::vector<FixedSum>& values) const {
 #endif
 }
 
-void Cluster::sum_to_root(std::vector<int>& values) const {
+// Element-wise MPI_SUM of a vector of int or uint64_t, to rank 0.
+template <class T>
+static void sum_integers(const Cluster& cluster, std::vector<T>& values) {
+  static_assert(std::is_same_v<T, int> || std::is_same_v<T, uint64_t>);
 #ifdef CAUSTICA_MPI
-  if (distributed()) reduce_sum(values, MPI_INT, MPI_SUM, root());
+  const MPI_Datatype type = std::is_same_v<T, int> ? MPI_INT : MPI_UINT64_T;
+  if (cluster.distributed()) reduce_sum(values, type, MPI_SUM, cluster.root());
 #else
+  (void)cluster;
   (void)values;
 #endif
 }
 
-void Cluster::sum_to_root(std::vector<uint64_t>& values) const {
-#ifdef CAUSTICA_MPI
-  if (distributed()) reduce_sum(values, MPI_UINT64_T, MPI_SUM, root());
-#else
-  (void)values;
-#endif
-}
+void Cluster::sum_to_root(std::vector<int>& values) const { sum_integers(*this, values); }
+void Cluster::sum_to_root(std::vector<uint64_t>& values) const { sum_integers(*this, values); }
 
 void Cluster::barrier() const {
 #ifdef CAUSTICA_MPI
