@@ -3,8 +3,9 @@
 // for bit however its terms are grouped: by pass, by tile, or across MPI ranks.
 //
 // Range: values are clamped to +-1e12 and a sum may reach about 9.2e18 (2^63), so a pixel holds
-// over nine million samples at the clamp (beyond, add_saturating holds the sum at its limit). Resolution: values below 2^-64 (5.4e-20) vanish, and a
-// float's bits below 2^-64 are dropped, so floats from 2^-41 (4.5e-13) up are held exactly.
+// over nine million samples at the clamp (beyond, add_saturating holds the sum at its limit).
+// Resolution: values below 2^-64 (5.4e-20) vanish, and a float's bits below 2^-64 are dropped,
+// so floats from 2^-41 (4.5e-13) up are held exactly.
 #pragma once
 #include <algorithm>
 #include <cmath>

@@ -89,14 +89,18 @@ Image render_image(const Scene& scene, Integrator& integrator, const RenderOptio
     rays += tile_rays;
     bad += tile_bad;
   };
-  // Each pixel is the mean of its own passes (after an interruption, some pixels have one more).
+  // Each pixel is the mean of its own passes (after an interruption, some pixels have one more):
+  // value c of pixel i, where `sums` holds `per_pixel` values a pixel.
+  auto pixel_mean = [](const std::vector<FixedSum>& sums, const std::vector<int>& counts, size_t i,
+                       size_t per_pixel, size_t c) {
+    return float(from_fixed(sums[i * per_pixel + c]) * (1.0 / double(counts[i])));
+  };
   auto mean_image = [&](const std::vector<FixedSum>& sums, const std::vector<int>& counts) {
     Image image(w, h);
     for (size_t i = 0; i < counts.size(); ++i) {
       if (counts[i] == 0) continue;
-      const double inv = 1.0 / double(counts[i]);
-      image.pixels[i] = Color(float(from_fixed(sums[i * 3]) * inv), float(from_fixed(sums[i * 3 + 1]) * inv),
-                              float(from_fixed(sums[i * 3 + 2]) * inv));
+      image.pixels[i] = Color(pixel_mean(sums, counts, i, 3, 0), pixel_mean(sums, counts, i, 3, 1),
+                              pixel_mean(sums, counts, i, 3, 2));
     }
     integrator.resolve(image, counts);
     return image;
@@ -194,8 +198,7 @@ Image render_image(const Scene& scene, Integrator& integrator, const RenderOptio
     aovs->assign(2, Image(w, h));
     for (size_t i = 0; i < pixel_passes.size(); ++i) {
       if (pixel_passes[i] == 0) continue;
-      const double inv = 1.0 / double(pixel_passes[i]);
-      auto mean = [&](int a) { return float(from_fixed(aov_sum[i * kA + size_t(a)]) * inv); };
+      auto mean = [&](size_t a) { return pixel_mean(aov_sum, pixel_passes, i, kA, a); };
       (*aovs)[0].pixels[i] = Color(mean(0), mean(1), 0.0f);
       (*aovs)[1].pixels[i] = Color(mean(2), mean(3), 0.0f);
     }

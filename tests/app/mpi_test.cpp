@@ -172,7 +172,7 @@ TEST_CASE("mpi: a build without MPI started by mpirun says that each process ren
   CHECK(r.err.find("built without MPI") != std::string::npos);
 }
 
-TEST_CASE("mpi: converge on two ranks measures the same passes as one process", "[app][mpi]") {
+TEST_CASE("mpi: converge on two ranks records whole rounds of passes and writes its report", "[app][mpi]") {
   if (!mpi_available()) return;
   test::TempDir dir;
   dir.write("scene.json", test::kLitFloorScene);
