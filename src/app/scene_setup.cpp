@@ -111,8 +111,10 @@ int thread_count(const SceneOptions& options) {
   if (options.threads) return *options.threads;
   // The ranks on this machine share its cores, and no rank takes more than the cores it may run
   // on (mpirun binds ranks to a core or a socket).
+  // hardware_concurrency() is 0 where it cannot tell: then the usable cores are the share.
   const int usable = tbb::info::default_concurrency();
-  const int share = int(std::thread::hardware_concurrency()) / Cluster::world().local_size();
+  const int cores = int(std::thread::hardware_concurrency());
+  const int share = cores > 0 ? cores / Cluster::world().local_size() : usable;
   return std::max(1, std::min(usable, share));
 }
 
