@@ -5,7 +5,11 @@
 #include <memory>
 #include "core/rng.h"
 #include "core/sampling.h"
+#include <mutex>
+#include <tbb/global_control.h>
 #include "photon/photon_tracer.h"
+#include "trace/integrator.h"
+#include "trace/render.h"
 
 namespace caustica::bench {
 
@@ -49,6 +53,60 @@ RayBatch make_rays(const Scene& scene, size_t n, bool shadow, uint64_t seed) {
     batch.rays.push_back(Ray{o, d / len, shadow ? len : kInfinity});
   }
   return batch;
+}
+
+namespace {
+// Casts through another accelerator and appends every ray to a list.
+class RecordingAccel final : public Accelerator {
+ public:
+  RecordingAccel(std::unique_ptr<Accelerator> inner, std::vector<RecordedRay>& out)
+      : inner_(std::move(inner)), out_(out) {}
+  bool intersect(const Ray& ray, Hit& hit) const override {
+    record(ray, false);
+    return inner_->intersect(ray, hit);
+  }
+  bool occluded(const Ray& ray) const override {
+    record(ray, true);
+    return inner_->occluded(ray);
+  }
+  const std::vector<Primitive>& primitives() const override { return inner_->primitives(); }
+  Bounds bounds() const override { return inner_->bounds(); }
+  size_t memory_bytes() const override { return inner_->memory_bytes(); }
+  const char* name() const override { return inner_->name(); }
+  std::unique_ptr<Accelerator> release() { return std::move(inner_); }
+
+ private:
+  void record(const Ray& ray, bool shadow) const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    out_.push_back(RecordedRay{ray, shadow});
+  }
+  std::unique_ptr<Accelerator> inner_;
+  std::vector<RecordedRay>& out_;
+  mutable std::mutex mutex_;
+};
+}  // namespace
+
+const PathRays* cornell_bunny_path_rays() {
+  static std::unique_ptr<PathRays> recorded = []() -> std::unique_ptr<PathRays> {
+    if (!std::filesystem::exists("/usr/share/glmark2/models/bunny.obj")) return nullptr;
+    auto p = std::make_unique<PathRays>();
+    p->loaded = std::make_unique<LoadedScene>(load_scene(source_dir() + "/scenes/cornell-bunny.json"));
+    Scene& scene = p->scene();
+    scene.wrap_accel([&](std::unique_ptr<Accelerator> a) { return std::make_unique<RecordingAccel>(std::move(a), p->rays); });
+    const auto integrator = create_integrator("path", scene.integrator_settings, scene.render);
+    RenderOptions options;
+    options.spp = 1;
+    options.quiet = true;
+    RenderStats stats;
+    {
+      tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
+      render_image(scene, *integrator, options, stats);
+    }
+    p->samples = stats.samples;
+    scene.wrap_accel([](std::unique_ptr<Accelerator> a) { return static_cast<RecordingAccel&>(*a).release(); });
+    return p;
+  }();
+  return recorded.get();
 }
 
 const std::vector<Photon>& cornell_photons(size_t n) {

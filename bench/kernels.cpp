@@ -37,8 +37,8 @@ void BM_Rays(benchmark::State& state) {
   tbb::global_control c(tbb::global_control::max_allowed_parallelism, size_t(state.range(2)));
   size_t hits = 0;
   for (auto _ : state) {
-    hits = shadow ? count_hits(batch, [&](const Ray& ray) { return accel->occluded(ray); })
-                  : count_hits(batch, [&](const Ray& ray) {
+    hits = shadow ? count_hits(batch.rays, [&](const Ray& ray) { return accel->occluded(ray); })
+                  : count_hits(batch.rays, [&](const Ray& ray) {
                       Hit hit;
                       return accel->intersect(ray, hit);
                     });
@@ -48,6 +48,28 @@ void BM_Rays(benchmark::State& state) {
   state.SetLabel(std::string(scene_name(int(state.range(0)))) + (shadow ? " shadow " : " closest ") + accel->name());
 }
 BENCHMARK(BM_Rays)->ArgsProduct({{0, 1}, {0, 1}, {1, 2}, {0, 1}})->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// args: backend (0 bvh, 1 embree), threads. The path tracer on cornell-bunny at 1 spp (the render
+// whose rays BM_PathRaysEmbree replays): samples/s end to end, to hold against that bound.
+void BM_PathRender(benchmark::State& state) {
+  const PathRays* recorded = cornell_bunny_path_rays();
+  if (!recorded) return state.SkipWithError("bunny.obj missing (install glmark2-data)");
+  if (state.range(0) == 1 && !embree_available()) return state.SkipWithError("built without Embree");
+  Scene& scene = recorded->scene();
+  scene.set_accel(state.range(0) == 0 ? AccelKind::Bvh : AccelKind::Embree);
+  const auto integrator = create_integrator("path", scene.integrator_settings, scene.render);
+  RenderOptions options;
+  options.spp = 1;
+  options.quiet = true;
+  tbb::global_control c(tbb::global_control::max_allowed_parallelism, size_t(state.range(1)));
+  RenderStats stats;
+  for (auto _ : state) benchmark::DoNotOptimize(render_image(scene, *integrator, options, stats));
+  state.counters["samples_per_second"] =
+      benchmark::Counter(double(stats.samples) * double(state.iterations()), benchmark::Counter::kIsRate);
+  state.counters["rays_per_sample"] = double(stats.rays) / double(stats.samples);
+  state.SetLabel(std::string("cornell-bunny path, ") + scene.accel().name());
+}
+BENCHMARK(BM_PathRender)->ArgsProduct({{0, 1}, {1, 2}})->Unit(benchmark::kMillisecond)->UseRealTime();
 
 void BM_BvhBuild(benchmark::State& state) {
   const Scene* scene = bunny();

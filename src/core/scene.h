@@ -87,6 +87,12 @@ class Scene {
   // The indices of those lights in `lights`.
   const std::vector<size_t>& environment() const { return environment_; }
   const Accelerator& accel() const { return *accel_; }
+  // Replaces the ray-casting structure by wrap(the current one): instrumentation, such as a
+  // benchmark recording the rays an integrator casts. The wrapper must cast the same rays.
+  template <class Wrap>
+  void wrap_accel(Wrap wrap) {
+    accel_ = wrap(std::move(accel_));
+  }
   Bounds bounds() const { return bounds_; }
   float surface_area() const;  // of all geometry
 
