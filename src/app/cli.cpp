@@ -123,7 +123,10 @@ int run_cli(int argc, char** argv) {
   CompareArgs cargs;
   CLI::App* compare = app.add_subcommand("compare", "Error figures of an image against a reference");
   compare->add_option("image", cargs.image, "Image to judge (.exr, .hdr, .pfm, .png)")->required();
-  compare->add_option("reference", cargs.reference, "Reference image")->required();
+  compare->add_option("reference", cargs.references,
+                      "Reference image; several independent renders (other seeds) are compared against as "
+                      "their mean, and their spread gives the floor their noise adds to the relMSE")
+      ->required();
   compare->add_option("--diff", cargs.diff, "Write a false-colour map of the relative error (with a colour bar)");
   compare->add_flag("--json", cargs.json, "Print the figures as one JSON object");
 
@@ -131,7 +134,12 @@ int run_cli(int argc, char** argv) {
   SceneFlags converge_flags;
   CLI::App* converge = app.add_subcommand("converge", "Equal-time convergence of integrators against a reference");
   converge_flags.add(converge, vargs.common, false);
-  converge->add_option("--reference", vargs.reference, "Reference image (.exr)")->required();
+  converge->add_option("--reference", vargs.references,
+                       "Reference image (.exr); given again, independent renders of the scene (other seeds), "
+                       "compared against as their mean, whose noise floor is then reported and subtracted")
+      ->required()
+      ->expected(1)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   converge->add_option("--integrators", vargs.integrators, "Integrators to compare, e.g. photon,path")
       ->delimiter(',')
       ->required();

@@ -7,7 +7,21 @@
 
 namespace caustica {
 
-std::string format_metrics(const ErrorMetrics& m, bool json) {
+Reference read_references(const std::vector<std::string>& files) {
+  std::vector<Image> renders;
+  for (const std::string& f : files) renders.push_back(read_image(f));
+  return combine_references(renders, files);
+}
+
+std::string describe_references(const std::vector<std::string>& files) {
+  if (files.size() == 1) return files[0];
+  std::string s = "mean of ";
+  for (size_t i = 0; i < files.size(); ++i) s += (i ? ", " : "") + files[i];
+  return s;
+}
+
+std::string format_metrics(const ErrorMetrics& m, bool json, const Reference* reference) {
+  const bool floor = reference && reference->renders >= 2;
   if (json) {
     auto finite = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
     nlohmann::json j = {{"rmse", m.rmse},
@@ -17,6 +31,11 @@ std::string format_metrics(const ErrorMetrics& m, bool json) {
                         {"max_error", m.max_error},
                         {"mean_image", {m.mean_image.r, m.mean_image.g, m.mean_image.b}},
                         {"mean_reference", {m.mean_reference.r, m.mean_reference.g, m.mean_reference.b}}};
+    if (floor) {
+      j["references"] = reference->renders;
+      j["reference_floor"] = reference->floor;
+      j["relmse_floor_free"] = m.relmse - reference->floor;
+    }
     return j.dump() + "\n";
   }
   std::ostringstream s;
@@ -24,16 +43,21 @@ std::string format_metrics(const ErrorMetrics& m, bool json) {
   s << "rmse: " << m.rmse << "\nrelmse: " << m.relmse << "\nmae: " << m.mae << "\npsnr: " << m.psnr << " dB\n";
   s << "mean image: " << m.mean_image.r << " " << m.mean_image.g << " " << m.mean_image.b << "\n";
   s << "mean reference: " << m.mean_reference.r << " " << m.mean_reference.g << " " << m.mean_reference.b << "\n";
+  if (floor) {
+    s << "reference floor: " << reference->floor << " (the relMSE of the mean of " << reference->renders
+      << " references, from their spread)\n";
+    s << "relmse without the floor: " << m.relmse - reference->floor << "\n";
+  }
   return s.str();
 }
 
 int run_compare(const CompareArgs& args) {
   if (!args.diff.empty()) check_output_path(args.diff);
   const Image image = read_image(args.image);
-  const Image reference = read_image(args.reference);
-  const ErrorMetrics m = compare_images(image, reference, args.image, args.reference);
-  if (!args.diff.empty()) write_image(args.diff, error_map(image, reference));
-  std::cout << format_metrics(m, args.json);
+  const Reference reference = read_references(args.references);
+  const ErrorMetrics m = compare_images(image, reference.mean, args.image, describe_references(args.references));
+  if (!args.diff.empty()) write_image(args.diff, error_map(image, reference.mean));
+  std::cout << format_metrics(m, args.json, &reference);
   return 0;
 }
 

@@ -9,6 +9,7 @@
 #include <iostream>
 #include <sstream>
 #include <tbb/global_control.h>
+#include "app/compare_command.h"
 #include "app/report.h"
 #include "core/metrics.h"
 #include "core/rng.h"
@@ -26,9 +27,12 @@ std::vector<double> default_checkpoints(double time) {
 
 std::string convergence_csv(const std::vector<ConvergeRow>& rows) {
   std::ostringstream s;
-  s << "integrator,seconds,passes,rmse,relmse\n" << std::setprecision(9);
+  const bool floor = std::any_of(rows.begin(), rows.end(), [](const ConvergeRow& r) { return !std::isnan(r.relmse_floor_free); });
+  s << "integrator,seconds,passes,rmse,relmse" << (floor ? ",relmse_floor_free" : "") << "\n" << std::setprecision(9);
   for (const ConvergeRow& r : rows) {
-    s << r.integrator << "," << r.seconds << "," << r.passes << "," << r.rmse << "," << r.relmse << "\n";
+    s << r.integrator << "," << r.seconds << "," << r.passes << "," << r.rmse << "," << r.relmse;
+    if (floor) s << "," << r.relmse_floor_free;
+    s << "\n";
   }
   return s.str();
 }
@@ -54,7 +58,10 @@ int run_converge(const ConvergeArgs& args) {
     fs::create_directories(args.out_dir, ec);
     if (!fs::is_directory(args.out_dir)) throw InputError(args.out_dir + ": cannot create the output folder");
   }
-  const Image reference = read_image(args.reference);
+  const Reference combined = read_references(args.references);
+  const Image& reference = combined.mean;
+  const bool has_floor = combined.renders >= 2;
+  const std::string reference_name = describe_references(args.references);
   LoadedScene loaded = load_scene_with(args.common);
   Scene& scene = *loaded.scene;
   // Without --seed, a seed derived from the scene's: a reference rendered with the scene's
@@ -67,7 +74,7 @@ int run_converge(const ConvergeArgs& args) {
     scene.camera.set_resolution(reference.width, reference.height);
   }
   if (reference.width != scene.render.width || reference.height != scene.render.height) {
-    throw InputError(args.reference + ": reference is " + std::to_string(reference.width) + "x" +
+    throw InputError(reference_name + ": reference is " + std::to_string(reference.width) + "x" +
                      std::to_string(reference.height) + ", the render " + std::to_string(scene.render.width) + "x" +
                      std::to_string(scene.render.height));
   }
@@ -78,7 +85,7 @@ int run_converge(const ConvergeArgs& args) {
   for (const std::string& name : args.integrators) integrators.push_back(integrator_for(scene, name, args.common, true));
   {
     std::ostringstream command_settings;
-    command_settings << "converge " << args.reference << " time=" << args.time << std::setprecision(17);
+    command_settings << "converge " << reference_name << " time=" << args.time << std::setprecision(17);
     for (const std::string& name : args.integrators) command_settings << " " << name;
     for (double c : checkpoints) command_settings << " @" << c;
     std::vector<const Integrator*> all;
@@ -94,11 +101,18 @@ int run_converge(const ConvergeArgs& args) {
   report.title = fs::path(args.common.scene).filename().string() + ": " + std::to_string(int(args.time)) +
                  " s per integrator";
   report.facts = {{"scene", args.common.scene},
-                  {"reference", args.reference},
+                  {"reference", reference_name},
                   {"resolution", std::to_string(scene.render.width) + "x" + std::to_string(scene.render.height)},
                   {"threads", std::to_string(threads) + (cluster.distributed() ? " per rank, " +
                                   std::to_string(cluster.size()) + " MPI ranks" : "")},
                   {"seed", std::to_string(scene.render.seed)}};
+  if (has_floor) {
+    std::ostringstream f;
+    f << std::scientific << std::setprecision(3) << combined.floor
+      << " (relMSE of the references' mean, from their spread; subtracted in relmse_floor_free)";
+    report.facts.emplace_back("reference floor", f.str());
+    if (!quiet) std::cerr << "reference floor: " << f.str() << "\n";
+  }
   if (root) write_image((fs::path(args.out_dir) / "reference.png").string(), reference);
   report.images.push_back({"reference", "reference.png"});
   std::vector<ReportImage> error_images;
@@ -110,15 +124,17 @@ int run_converge(const ConvergeArgs& args) {
     integ.preprocess(scene, {scene.render.seed, quiet, nullptr, cluster.rank()});
     const double pre = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     size_t next = 0;
-    ReportSeries series{name, {}};
+    ReportSeries series{name, {}}, floor_free{name, {}};
     auto record = [&](double seconds, long passes, const Image& mean) {
       const ErrorMetrics m = compare_images(mean, reference);
-      rows.push_back({name, seconds, passes, m.rmse, m.relmse});
+      rows.push_back({name, seconds, passes, m.rmse, m.relmse, has_floor ? m.relmse - combined.floor : std::nan("")});
       series.points.push_back({seconds, m.relmse, m.rmse, passes});
+      if (has_floor) floor_free.points.push_back({seconds, m.relmse - combined.floor, m.rmse, passes});
       if (!quiet) {
         std::cerr << name << ": " << std::fixed << std::setprecision(1) << seconds << " s, " << passes
-                  << " passes, relMSE " << std::scientific << std::setprecision(3) << m.relmse << std::defaultfloat
-                  << "\n";
+                  << " passes, relMSE " << std::scientific << std::setprecision(3) << m.relmse;
+        if (has_floor) std::cerr << " (" << m.relmse - combined.floor << " without the floor)";
+        std::cerr << std::defaultfloat << "\n";
       }
     };
     RenderOptions options;
@@ -139,13 +155,18 @@ int run_converge(const ConvergeArgs& args) {
     const double total = pre + stats.seconds;
     if (series.points.empty() || series.points.back().passes != stats.passes) record(total, stats.passes, image);
     report.series.push_back(series);
-    if (const double slope = convergence_slope(series); std::isfinite(slope)) {
+    // The late log-log slope of the raw figures, and of those without the reference's floor.
+    auto add_rate = [&](const ReportSeries& s, const std::string& what, const std::string& fact) {
+      const double slope = convergence_slope(s);
+      if (!std::isfinite(slope)) return;
       std::ostringstream rate;
-      rate << "relMSE ~ t^" << std::fixed << std::setprecision(2) << slope << " from " << std::setprecision(1)
+      rate << what << " ~ t^" << std::fixed << std::setprecision(2) << slope << " from " << std::setprecision(1)
            << 0.25 * total << " s on" << (slope > -0.2 ? " (flattening: a bias floor)" : "");
-      report.facts.emplace_back(name + " rate", rate.str());
+      report.facts.emplace_back(name + fact, rate.str());
       if (!quiet) std::cerr << name << ": " << rate.str() << "\n";
-    }
+    };
+    add_rate(series, "relMSE", " rate");
+    if (has_floor) add_rate(floor_free, "relMSE - floor", " rate without the floor");
     // Variants such as photon:progressive=false get file names without ':' and '='.
     std::string file = name;
     std::replace_if(file.begin(), file.end(), [](char c) { return c == ':' || c == '=' || c == '/'; }, '_');

@@ -41,6 +41,40 @@ ErrorMetrics compare_images(const Image& image, const Image& reference, const st
   return m;
 }
 
+Reference combine_references(const std::vector<Image>& renders, const std::vector<std::string>& names) {
+  if (renders.empty()) throw InputError("no reference image");
+  const Image& first = renders[0];
+  for (size_t k = 1; k < renders.size(); ++k) {
+    if (renders[k].width != first.width || renders[k].height != first.height) {
+      throw InputError("reference sizes differ: " + names[k] + " is " + std::to_string(renders[k].width) + "x" +
+                       std::to_string(renders[k].height) + ", " + names[0] + " is " + std::to_string(first.width) +
+                       "x" + std::to_string(first.height));
+    }
+  }
+  const size_t K = renders.size();
+  Reference ref;
+  ref.renders = K;
+  ref.mean = Image(first.width, first.height);
+  double floor = 0;
+  for (size_t i = 0; i < first.pixels.size(); ++i) {
+    for (int c = 0; c < 3; ++c) {
+      double sum = 0;
+      for (const Image& r : renders) sum += double(r.pixels[i][c]);
+      const double m = sum / double(K);
+      ref.mean.pixels[i][c] = float(m);
+      if (K < 2) continue;
+      // The unbiased sample variance of one render, over K for the variance of their mean.
+      double ss = 0;
+      for (const Image& r : renders) ss += (double(r.pixels[i][c]) - m) * (double(r.pixels[i][c]) - m);
+      // As compare_images divides: by the (float) reference value's square.
+      const double mf = ref.mean.pixels[i][c];
+      floor += ss / double(K * (K - 1)) / (mf * mf + 0.01);
+    }
+  }
+  ref.floor = first.pixels.empty() || K < 2 ? 0.0 : floor / (3.0 * double(first.pixels.size()));
+  return ref;
+}
+
 Color false_colour(float t) {
   // Piecewise-linear approximation of matplotlib's "viridis".
   static const Color stops[] = {{0.267f, 0.005f, 0.329f}, {0.283f, 0.141f, 0.458f}, {0.254f, 0.265f, 0.530f},

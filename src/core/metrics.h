@@ -1,6 +1,7 @@
 // Error metrics between an image and a reference, and false-colour error maps.
 #pragma once
 #include <string>
+#include <vector>
 #include "core/image.h"
 
 namespace caustica {
@@ -17,6 +18,20 @@ struct ErrorMetrics {
 // Throws InputError when the sizes differ (`image_name`, `reference_name` name them).
 ErrorMetrics compare_images(const Image& image, const Image& reference, const std::string& image_name = "image",
                             const std::string& reference_name = "reference");
+
+// A reference made of independent renders of one scene (other seeds): their mean, and the
+// relMSE that mean itself carries against the converged image, estimated from the renders'
+// spread. An image's relMSE against the mean is, in expectation, its relMSE against the
+// converged image plus that floor (the noises are independent), so relmse - floor estimates
+// the error against the truth. With one render the floor is unknown: 0, and `renders` says 1.
+struct Reference {
+  Image mean;
+  double floor = 0;  // mean over pixels and channels of Var(mean) / (mean^2 + 0.01)
+  size_t renders = 0;
+};
+
+// Throws InputError when the sizes differ (names[i] names renders[i]) or there is none.
+Reference combine_references(const std::vector<Image>& renders, const std::vector<std::string>& names);
 
 // Per-pixel relative squared error (averaged over channels) in false colour (a perceptual
 // dark-blue-to-yellow ramp on a log scale from 1e-4 to 1), with a labelled colour bar below.

@@ -158,6 +158,41 @@ TEST_CASE("cli: compare prints the figures, as JSON too, and writes an error map
   CHECK(r.err.find("missing.exr") != std::string::npos);
 }
 
+TEST_CASE("cli: compare against several references reports their floor and subtracts it", "[app]") {
+  // Two references 0.4 and 0.6 (mean 0.5) and an image at 0.6: against the mean the error is
+  // 0.1 per value; the references' spread says their mean is 0.1 off too (sample variance
+  // 0.02, over 2), so the image's error without the floor is 0.
+  test::TempDir dir;
+  Image a(8, 8), b(8, 8), img(8, 8);
+  for (Color& c : a.pixels) c = Color(0.4f);
+  for (Color& c : b.pixels) c = Color(0.6f);
+  for (Color& c : img.pixels) c = Color(0.6f);
+  write_image(dir.file("a.exr"), a);
+  write_image(dir.file("b.exr"), b);
+  write_image(dir.file("img.exr"), img);
+  const double relmse = 0.01 / (0.25 + 0.01);
+  auto r = run_caustica("compare img.exr a.exr b.exr --json", dir);
+  REQUIRE(r.exit_code == 0);
+  const auto j = nlohmann::json::parse(r.out);
+  CHECK(j["mean_reference"][0].get<double>() == Approx(0.5));
+  CHECK(j["relmse"].get<double>() == Approx(relmse).epsilon(1e-5));
+  CHECK(j["references"].get<int>() == 2);
+  CHECK(j["reference_floor"].get<double>() == Approx(relmse).epsilon(1e-5));
+  CHECK(j["relmse_floor_free"].get<double>() == Approx(0.0).margin(1e-6));
+  r = run_caustica("compare img.exr a.exr b.exr", dir);
+  REQUIRE(r.exit_code == 0);
+  CHECK(r.out.find("reference floor: 0.0384") != std::string::npos);
+  CHECK(r.out.find("relmse without the floor: ") != std::string::npos);
+  // One reference: no floor in the figures.
+  r = run_caustica("compare img.exr a.exr --json", dir);
+  REQUIRE(r.exit_code == 0);
+  CHECK_FALSE(nlohmann::json::parse(r.out).contains("reference_floor"));
+  write_image(dir.file("small.exr"), Image(4, 8));
+  r = run_caustica("compare img.exr a.exr small.exr", dir);
+  CHECK(r.exit_code == 1);
+  CHECK(r.err.find("reference sizes differ: small.exr is 4x8, a.exr is 8x8") != std::string::npos);
+}
+
 TEST_CASE("cli: warnings (degenerate triangle, albedo above 1) still render", "[app]") {
   test::TempDir dir;
   std::string text(test::kLitFloorScene);

@@ -2,6 +2,7 @@
 #include <catch2/catch.hpp>
 #include <filesystem>
 #include <sstream>
+#include <nlohmann/json.hpp>
 #include "app/converge_command.h"
 #include "core/image.h"
 #include "support/run.h"
@@ -62,6 +63,53 @@ TEST_CASE("converge: a short run writes the CSV, images, error maps and the repo
   }
   CHECK(path_rows >= 2);
   CHECK(photon_rows >= 1);
+}
+
+TEST_CASE("converge: the CSV's floor-free column appears with rows that have it", "[app][converge]") {
+  std::vector<ConvergeRow> rows = {{"photon", 1.5, 3, 0.25, 0.125}, {"path", 2, 40, 0.5, 0.0625}};
+  rows[0].relmse_floor_free = 0.1;
+  rows[1].relmse_floor_free = 0.0375;
+  CHECK(convergence_csv(rows) ==
+        "integrator,seconds,passes,rmse,relmse,relmse_floor_free\nphoton,1.5,3,0.25,0.125,0.1\n"
+        "path,2,40,0.5,0.0625,0.0375\n");
+}
+
+TEST_CASE("converge: two references give the floor and the error without it", "[app][converge]") {
+  test::TempDir dir;
+  const std::string tiny = std::string(CAUSTICA_SOURCE_DIR) + "/tests/data/tiny.json";
+  for (const char* seed : {"1", "2"}) {
+    auto r = test::run_caustica("render '" + tiny + "' --spp 16 --seed " + seed + " -o ref" + seed + ".exr -q", dir);
+    REQUIRE(r.exit_code == 0);
+  }
+  // The floor, as compare computes it from the same two references.
+  auto r = test::run_caustica("compare ref1.exr ref1.exr ref2.exr --json", dir);
+  REQUIRE(r.exit_code == 0);
+  const double floor = nlohmann::json::parse(r.out)["reference_floor"].get<double>();
+  REQUIRE(floor > 0);
+  r = test::run_caustica("converge '" + tiny + "' --reference ref1.exr --reference ref2.exr --integrators path "
+                         "--time 1 --checkpoints 0.5 --out report",
+                         dir);
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  CHECK(r.err.find("reference floor: ") != std::string::npos);
+  CHECK(r.err.find("without the floor") != std::string::npos);
+  std::istringstream csv(test::read_text(dir.file("report/convergence.csv")));
+  std::string line;
+  std::getline(csv, line);
+  CHECK(line == "integrator,seconds,passes,rmse,relmse,relmse_floor_free");
+  int rows = 0;
+  while (std::getline(csv, line)) {
+    std::vector<std::string> f;
+    std::istringstream fields(line);
+    for (std::string v; std::getline(fields, v, ',');) f.push_back(v);
+    REQUIRE(f.size() == 6);
+    CHECK(std::stod(f[5]) == Approx(std::stod(f[4]) - floor).margin(1e-7));
+    ++rows;
+  }
+  CHECK(rows >= 1);
+  const std::string html = test::read_text(dir.file("report/index.html"));
+  CHECK(html.find("reference floor") != std::string::npos);
+  CHECK(html.find("mean of ref1.exr, ref2.exr") != std::string::npos);
 }
 
 TEST_CASE("converge: bad input is a clear error", "[app][converge]") {

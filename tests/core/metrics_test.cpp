@@ -66,3 +66,67 @@ TEST_CASE("metrics: the error map has the image above a colour bar", "[core][met
   CHECK(map.at(20, 20).g < 0.05f);
   CHECK(false_colour(1.0f).g > false_colour(0.0f).g);  // the ramp rises
 }
+
+TEST_CASE("metrics: several references give their mean and the relMSE their noise adds", "[core][metrics]") {
+  // A known image t, K = 4 references and one image, each t plus its own independent uniform
+  // noise on [-a, a] (variance a^2 / 3). Against the references' mean, the image's relMSE is
+  // its error against t plus the mean's own, a^2 / 3 / K per value: the floor.
+  const int w = 256, h = 256, K = 4;
+  const float a = 0.1f;
+  Image truth(w, h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) truth.at(x, y) = Color(0.5f + x / 256.0f, 1.0f + y / 256.0f, 0.8f);
+  Rng rng(42);
+  auto noisy = [&] {
+    Image img = truth;
+    for (Color& c : img.pixels)
+      for (int k = 0; k < 3; ++k) c[k] += a * (2.0f * rng.next_float() - 1.0f);
+    return img;
+  };
+  std::vector<Image> renders;
+  for (int k = 0; k < K; ++k) renders.push_back(noisy());
+  const Image image = noisy();
+  const Reference ref = combine_references(renders, {"r0.exr", "r1.exr", "r2.exr", "r3.exr"});
+  REQUIRE(ref.renders == size_t(K));
+  REQUIRE(ref.mean.width == w);
+  for (size_t i : {size_t(0), size_t(777), size_t(w * h - 1)}) {
+    for (int c = 0; c < 3; ++c) {
+      double sum = 0;
+      for (const Image& r : renders) sum += r.pixels[i][c];
+      CHECK(ref.mean.pixels[i][c] == Approx(sum / K).epsilon(1e-6));
+    }
+  }
+  double expected_floor = 0, true_error = 0;
+  for (size_t i = 0; i < truth.pixels.size(); ++i) {
+    for (int c = 0; c < 3; ++c) {
+      const double t = truth.pixels[i][c];
+      expected_floor += double(a) * a / 3.0 / K / (t * t + 0.01);
+      const double d = double(image.pixels[i][c]) - t;
+      true_error += d * d / (t * t + 0.01);
+    }
+  }
+  expected_floor /= 3.0 * truth.pixels.size();
+  true_error /= 3.0 * truth.pixels.size();
+  CHECK(ref.floor == Approx(expected_floor).epsilon(0.02));
+  const ErrorMetrics m = compare_images(image, ref.mean);
+  // The raw figure is a quarter too high (1 + 1/K); with the floor taken out it is the error
+  // against the truth.
+  CHECK(m.relmse == Approx(true_error * (1.0 + 1.0 / K)).epsilon(0.02));
+  CHECK(m.relmse - ref.floor == Approx(true_error).epsilon(0.02));
+  CHECK(compare_images(image, truth).relmse == Approx(true_error).epsilon(1e-6));
+}
+
+TEST_CASE("metrics: one reference has no floor; references of other sizes are an error", "[core][metrics]") {
+  const Image r = ramp(16, 8);
+  const Reference one = combine_references({r}, {"r.exr"});
+  CHECK(one.renders == 1);
+  CHECK(one.floor == 0.0);
+  CHECK(one.mean.pixels == r.pixels);
+  try {
+    combine_references({r, ramp(8, 8)}, {"a.exr", "b.exr"});
+    FAIL("no error");
+  } catch (const InputError& e) {
+    CHECK(std::string(e.what()) == "reference sizes differ: b.exr is 8x8, a.exr is 16x8");
+  }
+  CHECK_THROWS_AS(combine_references({}, {}), InputError);
+}
