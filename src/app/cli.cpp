@@ -138,8 +138,7 @@ int run_cli(int argc, char** argv) {
                        "Reference image (.exr); given again, independent renders of the scene (other seeds), "
                        "compared against as their mean, whose noise floor is then reported and subtracted")
       ->required()
-      ->expected(1)
-      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+      ->allow_extra_args(false);
   converge->add_option("--integrators", vargs.integrators, "Integrators to compare, e.g. photon,path")
       ->delimiter(',')
       ->required();

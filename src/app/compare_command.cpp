@@ -10,7 +10,12 @@ namespace caustica {
 Reference read_references(const std::vector<std::string>& files) {
   std::vector<Image> renders;
   for (const std::string& f : files) renders.push_back(read_image(f));
-  return combine_references(renders, files);
+  Reference reference = combine_references(renders, files);
+  if (reference.renders >= 2 && !(reference.floor > 0)) {
+    std::cerr << "warning: the references (" << describe_references(files)
+              << ") do not differ, so their floor cannot be estimated: give renders with different seeds\n";
+  }
+  return reference;
 }
 
 std::string describe_references(const std::vector<std::string>& files) {

@@ -25,13 +25,12 @@ std::vector<double> default_checkpoints(double time) {
   return c;
 }
 
-std::string convergence_csv(const std::vector<ConvergeRow>& rows) {
+std::string convergence_csv(const std::vector<ConvergeRow>& rows, bool floor_free) {
   std::ostringstream s;
-  const bool floor = std::any_of(rows.begin(), rows.end(), [](const ConvergeRow& r) { return !std::isnan(r.relmse_floor_free); });
-  s << "integrator,seconds,passes,rmse,relmse" << (floor ? ",relmse_floor_free" : "") << "\n" << std::setprecision(9);
+  s << "integrator,seconds,passes,rmse,relmse" << (floor_free ? ",relmse_floor_free" : "") << "\n" << std::setprecision(9);
   for (const ConvergeRow& r : rows) {
     s << r.integrator << "," << r.seconds << "," << r.passes << "," << r.rmse << "," << r.relmse;
-    if (floor) s << "," << r.relmse_floor_free;
+    if (floor_free) s << "," << r.relmse_floor_free;
     s << "\n";
   }
   return s.str();
@@ -166,7 +165,13 @@ int run_converge(const ConvergeArgs& args) {
       if (!quiet) std::cerr << name << ": " << rate.str() << "\n";
     };
     add_rate(series, "relMSE", " rate");
-    if (has_floor) add_rate(floor_free, "relMSE - floor", " rate without the floor");
+    // Figures at or below the floor have no logarithm: the slope would skip them and mislead.
+    const bool above_floor = std::all_of(floor_free.points.begin(), floor_free.points.end(),
+                                         [](const ReportPoint& p) { return p.relmse > 0; });
+    if (has_floor && above_floor) add_rate(floor_free, "relMSE - floor", " rate without the floor");
+    if (has_floor && !above_floor) {
+      report.facts.emplace_back(name + " rate without the floor", "none: some figures are within the reference's floor");
+    }
     // Variants such as photon:progressive=false get file names without ':' and '='.
     std::string file = name;
     std::replace_if(file.begin(), file.end(), [](char c) { return c == ':' || c == '=' || c == '/'; }, '_');
@@ -181,7 +186,7 @@ int run_converge(const ConvergeArgs& args) {
   }
   if (!root) return 0;
   report.images.insert(report.images.end(), error_images.begin(), error_images.end());
-  write_text(fs::path(args.out_dir) / "convergence.csv", convergence_csv(rows));
+  write_text(fs::path(args.out_dir) / "convergence.csv", convergence_csv(rows, has_floor));
   write_report(args.out_dir, report);
   if (!quiet) std::cout << "wrote " << (fs::path(args.out_dir) / "index.html").string() << "\n";
   return 0;

@@ -28,8 +28,8 @@ struct ConvergeRow {
 
 int run_converge(const ConvergeArgs& args);
 // The CSV text for the rows: header "integrator,seconds,passes,rmse,relmse", and a last column
-// "relmse_floor_free" when the rows have it.
-std::string convergence_csv(const std::vector<ConvergeRow>& rows);
+// "relmse_floor_free" with `floor_free` (the reference is several renders).
+std::string convergence_csv(const std::vector<ConvergeRow>& rows, bool floor_free = false);
 // 1, 2, 4, ... below `time`, and `time` itself.
 std::vector<double> default_checkpoints(double time);
 

@@ -187,6 +187,10 @@ TEST_CASE("cli: compare against several references reports their floor and subtr
   r = run_caustica("compare img.exr a.exr --json", dir);
   REQUIRE(r.exit_code == 0);
   CHECK_FALSE(nlohmann::json::parse(r.out).contains("reference_floor"));
+  // The same file twice has no spread to estimate a floor from: a warning says so.
+  r = run_caustica("compare img.exr a.exr a.exr", dir);
+  REQUIRE(r.exit_code == 0);
+  CHECK(r.err.find("do not differ, so their floor cannot be estimated") != std::string::npos);
   write_image(dir.file("small.exr"), Image(4, 8));
   r = run_caustica("compare img.exr a.exr small.exr", dir);
   CHECK(r.exit_code == 1);
