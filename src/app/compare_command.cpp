@@ -11,7 +11,7 @@ Reference read_references(const std::vector<std::string>& files) {
   std::vector<Image> renders;
   for (const std::string& f : files) renders.push_back(read_image(f));
   Reference reference = combine_references(renders, files);
-  if (reference.renders >= 2 && !(reference.floor > 0)) {
+  if (reference.has_floor() && !(reference.floor > 0)) {
     std::cerr << "warning: the references (" << describe_references(files)
               << ") do not differ, so their floor cannot be estimated: give renders with different seeds\n";
   }
@@ -26,7 +26,7 @@ std::string describe_references(const std::vector<std::string>& files) {
 }
 
 std::string format_metrics(const ErrorMetrics& m, bool json, const Reference* reference) {
-  const bool floor = reference && reference->renders >= 2;
+  const bool floor = reference && reference->has_floor();
   if (json) {
     auto finite = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
     nlohmann::json j = {{"rmse", m.rmse},

@@ -25,12 +25,12 @@ std::vector<double> default_checkpoints(double time) {
   return c;
 }
 
-std::string convergence_csv(const std::vector<ConvergeRow>& rows, bool floor_free) {
+std::string convergence_csv(const std::vector<ConvergeRow>& rows, std::optional<double> floor) {
   std::ostringstream s;
-  s << "integrator,seconds,passes,rmse,relmse" << (floor_free ? ",relmse_floor_free" : "") << "\n" << std::setprecision(9);
+  s << "integrator,seconds,passes,rmse,relmse" << (floor ? ",relmse_floor_free" : "") << "\n" << std::setprecision(9);
   for (const ConvergeRow& r : rows) {
     s << r.integrator << "," << r.seconds << "," << r.passes << "," << r.rmse << "," << r.relmse;
-    if (floor_free) s << "," << r.relmse_floor_free;
+    if (floor) s << "," << r.relmse - *floor;
     s << "\n";
   }
   return s.str();
@@ -59,7 +59,7 @@ int run_converge(const ConvergeArgs& args) {
   }
   const Reference combined = read_references(args.references);
   const Image& reference = combined.mean;
-  const bool has_floor = combined.renders >= 2;
+  const bool has_floor = combined.has_floor();
   const std::string reference_name = describe_references(args.references);
   LoadedScene loaded = load_scene_with(args.common);
   Scene& scene = *loaded.scene;
@@ -123,12 +123,11 @@ int run_converge(const ConvergeArgs& args) {
     integ.preprocess(scene, {scene.render.seed, quiet, nullptr, cluster.rank()});
     const double pre = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     size_t next = 0;
-    ReportSeries series{name, {}}, floor_free{name, {}};
+    ReportSeries series{name, {}};
     auto record = [&](double seconds, long passes, const Image& mean) {
       const ErrorMetrics m = compare_images(mean, reference);
-      rows.push_back({name, seconds, passes, m.rmse, m.relmse, has_floor ? m.relmse - combined.floor : std::nan("")});
+      rows.push_back({name, seconds, passes, m.rmse, m.relmse});
       series.points.push_back({seconds, m.relmse, m.rmse, passes});
-      if (has_floor) floor_free.points.push_back({seconds, m.relmse - combined.floor, m.rmse, passes});
       if (!quiet) {
         std::cerr << name << ": " << std::fixed << std::setprecision(1) << seconds << " s, " << passes
                   << " passes, relMSE " << std::scientific << std::setprecision(3) << m.relmse;
@@ -165,12 +164,15 @@ int run_converge(const ConvergeArgs& args) {
       if (!quiet) std::cerr << name << ": " << rate.str() << "\n";
     };
     add_rate(series, "relMSE", " rate");
-    // Figures at or below the floor have no logarithm: the slope would skip them and mislead.
-    const bool above_floor = std::all_of(floor_free.points.begin(), floor_free.points.end(),
-                                         [](const ReportPoint& p) { return p.relmse > 0; });
-    if (has_floor && above_floor) add_rate(floor_free, "relMSE - floor", " rate without the floor");
-    if (has_floor && !above_floor) {
-      report.facts.emplace_back(name + " rate without the floor", "none: some figures are within the reference's floor");
+    if (has_floor) {
+      ReportSeries floor_free = series;
+      for (ReportPoint& p : floor_free.points) p.relmse -= combined.floor;
+      // Figures at or below the floor have no logarithm: the slope would skip them and mislead.
+      if (std::all_of(floor_free.points.begin(), floor_free.points.end(), [](const ReportPoint& p) { return p.relmse > 0; })) {
+        add_rate(floor_free, "relMSE - floor", " rate without the floor");
+      } else {
+        report.facts.emplace_back(name + " rate without the floor", "none: some figures are within the reference's floor");
+      }
     }
     // Variants such as photon:progressive=false get file names without ':' and '='.
     std::string file = name;
@@ -186,7 +188,7 @@ int run_converge(const ConvergeArgs& args) {
   }
   if (!root) return 0;
   report.images.insert(report.images.end(), error_images.begin(), error_images.end());
-  write_text(fs::path(args.out_dir) / "convergence.csv", convergence_csv(rows, has_floor));
+  write_text(fs::path(args.out_dir) / "convergence.csv", convergence_csv(rows, has_floor ? std::optional<double>(combined.floor) : std::nullopt));
   write_report(args.out_dir, report);
   if (!quiet) std::cout << "wrote " << (fs::path(args.out_dir) / "index.html").string() << "\n";
   return 0;

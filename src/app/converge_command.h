@@ -1,7 +1,7 @@
 // `caustica converge`: equal-time renders of several integrators, error against a reference
 // at checkpoints, and a report folder (CSV, images, error maps, index.html).
 #pragma once
-#include <cmath>
+#include <optional>
 #include <string>
 #include <vector>
 #include "app/scene_setup.h"
@@ -22,14 +22,12 @@ struct ConvergeRow {
   double seconds = 0;
   long passes = 0;
   double rmse = 0, relmse = 0;
-  // relmse less the reference's floor, when the reference is several renders (NaN otherwise)
-  double relmse_floor_free = std::nan("");
 };
 
 int run_converge(const ConvergeArgs& args);
 // The CSV text for the rows: header "integrator,seconds,passes,rmse,relmse", and a last column
-// "relmse_floor_free" with `floor_free` (the reference is several renders).
-std::string convergence_csv(const std::vector<ConvergeRow>& rows, bool floor_free = false);
+// "relmse_floor_free" (relmse - floor) when the reference's floor is known.
+std::string convergence_csv(const std::vector<ConvergeRow>& rows, std::optional<double> floor = std::nullopt);
 // 1, 2, 4, ... below `time`, and `time` itself.
 std::vector<double> default_checkpoints(double time);
 

@@ -28,6 +28,7 @@ struct Reference {
   Image mean;
   double floor = 0;  // mean over pixels and channels of Var(mean) / (mean^2 + 0.01)
   size_t renders = 0;
+  bool has_floor() const { return renders >= 2; }
 };
 
 // Throws InputError when the sizes differ (names[i] names renders[i]) or there is none.
