@@ -5,6 +5,8 @@
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 #include "bench_util.h"
+#include "core/rng.h"
+#include "core/sampling.h"
 
 using namespace caustica;
 using namespace caustica::bench;
@@ -110,5 +112,105 @@ void BM_PathRaysEmbree(benchmark::State& state) {
   state.SetLabel("cornell-bunny path rays, raw embree");
 }
 BENCHMARK(BM_PathRaysEmbree)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// Final-gather rays as the photon integrator casts them: `group` cosine-distributed rays from
+// each first hit of a camera ray on cornell-bunny (one ray per pixel), consecutive in the list.
+std::vector<Ray> gather_groups(const Scene& s, int group) {
+  std::vector<Ray> rays;
+  Rng rng(11);
+  const int w = s.camera.width(), h = s.camera.height();
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      SurfaceHit hit;
+      if (!s.intersect(s.camera.generate_ray(x, y, Vec2(0.5f)), hit)) continue;
+      for (int i = 0; i < group; ++i) {
+        const Vec3 wi = hit.frame.to_world(sample_cosine_hemisphere(Vec2(rng.next_float(), rng.next_float())));
+        rays.push_back(spawn_ray(hit.p, hit.n, wi));
+      }
+    }
+  }
+  return rays;
+}
+
+constexpr int kGather = 12;  // PhotonSettings::gather_rays' default
+
+// One group of kGather rays by `mode`: 0 rtcIntersect1 each, 1 a 16-wide packet (12 lanes
+// valid), 2 a stream (rtcIntersect1M) flagged coherent, 3 the stream flagged incoherent.
+// Writes each ray's hit distance (infinity for a miss).
+void cast_group(const EmbreeScene& es, const Ray* rays, int mode, float* t) {
+  RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  if (mode == 1) {
+    alignas(64) RTCRayHit16 rh;
+    alignas(64) int valid[16];
+    for (int i = 0; i < 16; ++i) {
+      const Ray& r = rays[std::min(i, kGather - 1)];
+      valid[i] = i < kGather ? -1 : 0;
+      rh.ray.org_x[i] = r.origin.x, rh.ray.org_y[i] = r.origin.y, rh.ray.org_z[i] = r.origin.z;
+      rh.ray.dir_x[i] = r.dir.x, rh.ray.dir_y[i] = r.dir.y, rh.ray.dir_z[i] = r.dir.z;
+      rh.ray.tnear[i] = 0.0f, rh.ray.tfar[i] = r.tmax, rh.ray.time[i] = 0.0f;
+      rh.ray.mask[i] = ~0u, rh.ray.id[i] = unsigned(i), rh.ray.flags[i] = 0;
+      rh.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
+    }
+    rtcIntersect16(valid, es.scene, &ctx, &rh);
+    for (int i = 0; i < kGather; ++i) t[i] = rh.hit.geomID[i] == RTC_INVALID_GEOMETRY_ID ? kInfinity : rh.ray.tfar[i];
+    return;
+  }
+  RTCRayHit rh[kGather];
+  for (int i = 0; i < kGather; ++i) {
+    const Ray& r = rays[i];
+    rh[i].ray.org_x = r.origin.x, rh[i].ray.org_y = r.origin.y, rh[i].ray.org_z = r.origin.z;
+    rh[i].ray.dir_x = r.dir.x, rh[i].ray.dir_y = r.dir.y, rh[i].ray.dir_z = r.dir.z;
+    rh[i].ray.tnear = 0.0f, rh[i].ray.tfar = r.tmax, rh[i].ray.time = 0.0f;
+    rh[i].ray.mask = ~0u, rh[i].ray.id = unsigned(i), rh[i].ray.flags = 0;
+    rh[i].hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  }
+  if (mode == 0) {
+    for (int i = 0; i < kGather; ++i) rtcIntersect1(es.scene, &ctx, &rh[i]);
+  } else {
+    ctx.flags = mode == 2 ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT : RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+    rtcIntersect1M(es.scene, &ctx, rh, kGather, sizeof(RTCRayHit));
+  }
+  for (int i = 0; i < kGather; ++i) t[i] = rh[i].hit.geomID == RTC_INVALID_GEOMETRY_ID ? kInfinity : rh[i].ray.tfar;
+}
+
+// args: mode (cast_group), threads. Whether Embree's packet or stream calls cast a point's
+// final-gather rays faster than single rays; the rays and their hits are the same in every mode
+// (checked against mode 0 before timing).
+void BM_GatherRaysEmbree(benchmark::State& state) {
+  const PathRays* recorded = cornell_bunny_path_rays();
+  if (!recorded) return state.SkipWithError("bunny.obj missing (install glmark2-data)");
+  static EmbreeScene es(recorded->scene());
+  static const std::vector<Ray> rays = gather_groups(recorded->scene(), kGather);
+  const int mode = int(state.range(0));
+  const size_t groups = rays.size() / kGather;
+  for (size_t g = 0; g < groups; g += 97) {
+    float a[kGather], b[kGather];
+    cast_group(es, &rays[g * kGather], 0, a);
+    cast_group(es, &rays[g * kGather], mode, b);
+    for (int i = 0; i < kGather; ++i) {
+      if (!(a[i] == b[i] || std::abs(a[i] - b[i]) <= 1e-4f * a[i])) return state.SkipWithError("hits differ from rtcIntersect1's");
+    }
+  }
+  tbb::global_control c(tbb::global_control::max_allowed_parallelism, size_t(state.range(1)));
+  std::atomic<size_t> hits{0};
+  for (auto _ : state) {
+    hits = 0;
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, groups, 256), [&](const tbb::blocked_range<size_t>& r) {
+      size_t local = 0;
+      for (size_t g = r.begin(); g != r.end(); ++g) {
+        float t[kGather];
+        cast_group(es, &rays[g * kGather], mode, t);
+        for (float ti : t) local += ti < kInfinity ? 1 : 0;
+      }
+      hits += local;
+    });
+  }
+  state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(groups * kGather));
+  state.counters["hit_fraction"] = double(hits.load()) / double(groups * kGather);
+  static const char* names[] = {"rtcIntersect1", "rtcIntersect16 (12 lanes)", "rtcIntersect1M coherent", "rtcIntersect1M incoherent"};
+  state.SetLabel(std::string("cornell-bunny gather groups of 12, ") + names[mode]);
+}
+BENCHMARK(BM_GatherRaysEmbree)->ArgsProduct({{0, 1, 2, 3}, {1, 2}})->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace
