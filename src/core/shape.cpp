@@ -10,6 +10,7 @@ Primitive Primitive::triangle(const Vec3& a, const Vec3& b, const Vec3& c) {
   p.p0 = a;
   p.p1 = b;
   p.p2 = c;
+  p.ng = glm::normalize(glm::cross(b - a, c - a));
   return p;
 }
 
@@ -45,8 +46,7 @@ float Primitive::area() const {
 }
 
 Vec3 Primitive::normal_at(const Vec3& p) const {
-  const Vec3 n = kind == ShapeKind::Triangle ? glm::normalize(glm::cross(p1 - p0, p2 - p0))
-                                             : glm::normalize(p - p0);
+  const Vec3 n = kind == ShapeKind::Triangle ? ng : glm::normalize(p - p0);
   return flip ? -n : n;
 }
 

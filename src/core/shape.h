@@ -31,8 +31,10 @@ struct TriangleAttributes {
 };
 
 // A triangle (p0, p1, p2) or a sphere (centre p0, radius p1.x). `flip` reverses the normal.
-struct Primitive {
+// One cache line each (the hit's surface data reads it right after the ray cast).
+struct alignas(64) Primitive {
   Vec3 p0, p1, p2;
+  Vec3 ng{0.0f};  // a triangle's unit winding normal, before `flip` (set by triangle())
   uint32_t material = 0;
   int32_t light = -1;  // index of the area light this primitive belongs to, or -1
   uint32_t attributes = kNoAttributes;  // index of the triangle's vertex normals and UVs in the scene
