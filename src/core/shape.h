@@ -52,6 +52,7 @@ struct alignas(64) Primitive {
   // Point at sample u, uniformly by area, with its normal.
   Vec3 sample_point(const Vec2& u, Vec3* normal) const;
 };
+static_assert(sizeof(Primitive) == 64, "a primitive fills one cache line");
 
 // Moller-Trumbore (1997). Returns true and t, barycentrics (u, v) for a hit with 0 < t < tmax.
 bool intersect_triangle(const Ray& ray, const Vec3& p0, const Vec3& p1, const Vec3& p2,
