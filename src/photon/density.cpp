@@ -99,6 +99,12 @@ void IrradianceCache::build(const PhotonMap& global, size_t stride, const Estima
   }
   std::vector<uint32_t> order;
   points_.build(std::move(points), float(mean), kLeafSize, &order);
+  std::vector<Vec3> positions(n), normals(n);
+  for (size_t i = 0; i < n; ++i) {
+    positions[i] = points_[uint32_t(i)].position;
+    normals[i] = points_[uint32_t(i)].surface_normal();
+  }
+  grid_.build(positions, normals);
   // The narrower windows' irradiance, in the map's (Morton) order.
   narrower_.assign(n * (L - 1), Color(0.0f));
   for (size_t i = 0; i < n; ++i) {
@@ -113,13 +119,19 @@ int IrradianceCache::level_for(const EstimateSettings& s) const {
 
 bool IrradianceCache::lookup(const Vec3& p, const Vec3& n_side, float max_radius, int level, Color& E,
                              std::vector<Neighbour>& scratch) const {
+  // Approximate nearest (within twice the distance) is as good here and cheaper.
+  const int64_t g = grid_.nearest(p, max_radius, [&](const Vec3& n) { return normals_agree(n, n_side); });
+  if (g >= 0) {
+    E = value(size_t(g), level);
+    return true;
+  }
+  if (g == PointGrid::kNone) return false;
   // The nearest point nearly always lies on the same surface; look further only when not.
   for (size_t k : {size_t(1), size_t(8)}) {
-    // Approximate nearest (within twice the distance) is as good here and cheaper.
     points_.knn(p, k, max_radius, scratch, 1.0f);
     for (const Neighbour& nb : scratch) {
       if (normals_agree(points_[nb.index].surface_normal(), n_side)) {
-        E = level == 0 ? points_.power(nb.index) : narrower_[size_t(nb.index) * size_t(levels_ - 1) + size_t(level - 1)];
+        E = value(nb.index, level);
         return true;
       }
     }

@@ -4,6 +4,7 @@
 #include "core/material.h"
 #include "core/scene.h"
 #include "photon/photon_map.h"
+#include "photon/point_grid.h"
 
 namespace caustica {
 
@@ -63,12 +64,19 @@ class IrradianceCache {
   bool lookup(const Vec3& p, const Vec3& n_side, float max_radius, int level, Color& E,
               std::vector<Neighbour>& scratch) const;
   size_t size() const { return points_.size(); }
-  size_t memory_bytes() const { return points_.memory_bytes() + narrower_.capacity() * sizeof(Color); }
-  // Lookups are 1-NN: small leaves beat the photon maps' 32 here (bench: BM_FinalGather).
+  size_t memory_bytes() const {
+    return points_.memory_bytes() + grid_.memory_bytes() + narrower_.capacity() * sizeof(Color);
+  }
+  // The kd-tree answers what the grid leaves undecided. Its lookups are 1-NN: small leaves
+  // beat the photon maps' 32 here (bench: BM_FinalGather).
   static constexpr size_t kLeafSize = 8;
 
  private:
+  Color value(size_t i, int level) const {
+    return level == 0 ? points_.power(uint32_t(i)) : narrower_[i * size_t(levels_ - 1) + size_t(level - 1)];
+  }
   PhotonMap points_;  // records reused: power = irradiance, normal = surface normal
+  PointGrid grid_;    // the same points, by index: most lookups end here
   std::vector<Color> narrower_;  // levels - 1 per point, in points_'s order
   EstimateSettings settings_;
   int levels_ = 1;

@@ -260,8 +260,9 @@ std::vector<Photon> run_map(const Scene& scene, const PhotonPassSettings& s, boo
 // Refuses up front a photon count whose maps would not fit in this machine's memory.
 void check_photon_memory(size_t photons) {
   // While tracing: a pending record (position, float flux, directions) and the final record;
-  // then the kd-tree index and the precomputed-irradiance points.
-  const double bytes_per_photon = 52.0 + sizeof(Photon) + 8.0 + 0.25 * (sizeof(Photon) + 8.0);
+  // then the kd-tree index and the precomputed-irradiance points (a quarter as many, each with
+  // a record, an index entry and a grid entry, normal and cells: PointGrid).
+  const double bytes_per_photon = 52.0 + sizeof(Photon) + 8.0 + 0.25 * (sizeof(Photon) + 8.0 + 60.0);
   const double need = double(photons) * bytes_per_photon;
   const double have = double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGE_SIZE));
   if (have > 0 && need > 0.8 * have) {

@@ -1,0 +1,128 @@
+// The irradiance points' grid against a brute-force scan: every answer it gives is an accepted
+// point within twice the true nearest distance, and it answers most queries on the surfaces.
+#include <catch2/catch.hpp>
+#include <cmath>
+#include "core/rng.h"
+#include "photon/point_grid.h"
+
+using namespace caustica;
+
+namespace {
+struct Points {
+  std::vector<Vec3> p, n;
+};
+
+// Points on the six inner walls of a box [0, 100]^3 (normals pointing inside), denser on the
+// floor, as photons fall in a room; plus a small cluster in the middle with random normals.
+Points room(size_t per_wall, uint64_t seed) {
+  Rng rng(seed);
+  Points pts;
+  for (int wall = 0; wall < 6; ++wall) {
+    const int axis = wall / 2;
+    const bool high = wall % 2 == 1;
+    const size_t count = wall == 2 ? 4 * per_wall : per_wall;  // y = 0: the floor
+    for (size_t i = 0; i < count; ++i) {
+      Vec3 p(100.0f * rng.next_float(), 100.0f * rng.next_float(), 100.0f * rng.next_float());
+      p[axis] = high ? 100.0f : 0.0f;
+      Vec3 n(0.0f);
+      n[axis] = high ? -1.0f : 1.0f;
+      pts.p.push_back(p);
+      pts.n.push_back(n);
+    }
+  }
+  for (int i = 0; i < 200; ++i) {
+    pts.p.push_back(Vec3(50.0f) + 3.0f * Vec3(rng.next_float(), rng.next_float(), rng.next_float()));
+    const Vec3 n(rng.next_float() - 0.5f, rng.next_float() - 0.5f, rng.next_float() - 0.5f);
+    pts.n.push_back(glm::normalize(n + Vec3(1e-3f)));
+  }
+  return pts;
+}
+
+bool agrees(const Vec3& a, const Vec3& b) { return glm::dot(a, b) > 0.9f; }
+
+// The nearest accepted point within max_radius by a full scan: its squared distance, or -1.
+float brute_nearest2(const Points& pts, const Vec3& q, const Vec3& side, float max_radius) {
+  float best = max_radius * max_radius;
+  bool found = false;
+  for (size_t i = 0; i < pts.p.size(); ++i) {
+    const Vec3 d = pts.p[i] - q;
+    const float d2 = glm::dot(d, d);
+    if (d2 < best && agrees(pts.n[i], side)) {
+      best = d2;
+      found = true;
+    }
+  }
+  return found ? best : -1.0f;
+}
+}  // namespace
+
+TEST_CASE("point grid: answers agree with a brute-force scan", "[photon][grid]") {
+  const Points pts = room(2000, 3);
+  PointGrid grid;
+  grid.build(pts.p, pts.n);
+  REQUIRE(grid.size() == pts.p.size());
+  REQUIRE(grid.cell_size() > 0.0f);
+  Rng rng(9);
+  int decided = 0, on_surface = 0, none = 0;
+  for (int k = 0; k < 4000; ++k) {
+    // Mostly points on a wall (a gather ray's hit), some anywhere in and around the box.
+    const int wall = int(rng.next_u32() % 6);
+    const int axis = wall / 2;
+    Vec3 q(110.0f * rng.next_float() - 5.0f, 110.0f * rng.next_float() - 5.0f, 110.0f * rng.next_float() - 5.0f);
+    Vec3 side(0.0f);
+    side[axis] = wall % 2 ? -1.0f : 1.0f;
+    const bool surface = k % 4 != 0;
+    if (surface) q[axis] = wall % 2 ? 100.0f : 0.0f;
+    const float max_radius = k % 8 == 1 ? 0.5f : 30.0f;  // some so small that nothing is found
+    const int64_t g = grid.nearest(q, max_radius, [&](const Vec3& n) { return agrees(n, side); });
+    const float truth2 = brute_nearest2(pts, q, side, max_radius);
+    if (g >= 0) {
+      REQUIRE(size_t(g) < pts.p.size());
+      CHECK(agrees(pts.n[size_t(g)], side));
+      const Vec3 d = pts.p[size_t(g)] - q;
+      REQUIRE(truth2 >= 0.0f);
+      CHECK(glm::dot(d, d) < max_radius * max_radius);
+      CHECK(std::sqrt(glm::dot(d, d)) <= 2.0f * std::sqrt(truth2) + 1e-4f);
+    } else if (g == PointGrid::kNone) {
+      CHECK(truth2 < 0.0f);
+      ++none;
+    } else {
+      CHECK(g == PointGrid::kUndecided);
+    }
+    if (surface && max_radius > 1.0f) {
+      ++on_surface;
+      decided += g >= 0 ? 1 : 0;
+    }
+  }
+  // The grid is what answers: most queries on a wall with a wide radius end there. (The cells
+  // follow the dense floor; on the walls, at a quarter of its density, the nearest point is
+  // farther than a cell for about one query in seven.)
+  CHECK(decided > 0.8 * on_surface);
+  CHECK(none > 0);
+}
+
+TEST_CASE("point grid: empty, single and coincident points, queries far away", "[photon][grid]") {
+  PointGrid empty;
+  empty.build({}, {});
+  CHECK(empty.nearest(Vec3(0.0f), 1.0f, [](const Vec3&) { return true; }) == PointGrid::kNone);
+
+  PointGrid one;
+  one.build({Vec3(1, 2, 3)}, {Vec3(0, 0, 1)});
+  const auto any = [](const Vec3&) { return true; };
+  CHECK(one.nearest(Vec3(1, 2, 3.1f), 1.0f, any) == 0);
+  CHECK(one.nearest(Vec3(1, 2, 3.1f), 1.0f, [](const Vec3& n) { return n.z < 0.0f; }) != 0);
+
+  // All at one place: a zero extent still gives a usable cell.
+  PointGrid same;
+  same.build(std::vector<Vec3>(50, Vec3(5.0f)), std::vector<Vec3>(50, Vec3(0, 1, 0)));
+  CHECK(same.cell_size() > 0.0f);
+  const int64_t s = same.nearest(Vec3(5.0f, 5.001f, 5.0f), 1.0f, any);
+  CHECK((s == 0 || s == PointGrid::kUndecided));  // the lowest index among equals, if decided
+
+  // Far outside the points' box, and not a number: left to the caller, never wrong.
+  const Points pts = room(200, 4);
+  PointGrid grid;
+  grid.build(pts.p, pts.n);
+  CHECK(grid.nearest(Vec3(1e6f, 0.0f, 0.0f), 10.0f, any) == PointGrid::kUndecided);
+  CHECK(grid.nearest(Vec3(std::nanf(""), 0.0f, 0.0f), 10.0f, any) == PointGrid::kUndecided);
+}
