@@ -5,17 +5,26 @@
 #include "core/shape.h"
 
 namespace caustica {
+namespace {
+constexpr uint32_t kLeftOut = ~uint32_t(0);  // cell_of for a point outside the grid
+}  // namespace
 
 void PointGrid::build(const std::vector<Vec3>& positions, const std::vector<Vec3>& normals, float per_cell) {
   entries_.clear();
   normals_.clear();
   start_.clear();
   if (positions.empty()) return;
+  // Points whose position is not finite are left out (no query can be near them).
+  auto finite = [](const Vec3& p) { return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z); };
   Bounds b;
-  for (const Vec3& p : positions) b.extend(p);
+  for (const Vec3& p : positions) {
+    if (finite(p)) b.extend(p);
+  }
+  if (b.empty()) return;
   const Vec3 e = b.extent();
   const double n = double(positions.size());
-  const double max_cells = std::max(8.0 * n, 4096.0);
+  // Cell indices are 32-bit.
+  const double max_cells = std::min(std::max(8.0 * n, 4096.0), 2147483648.0);
   auto cells_for = [&](float c, int64_t* dims) {
     double total = 1;
     for (int a = 0; a < 3; ++a) {
@@ -43,6 +52,10 @@ void PointGrid::build(const std::vector<Vec3>& positions, const std::vector<Vec3
     origin_ = b.lo;
     inv_cell_ = 1.0f / cell;
     tbb::parallel_for(size_t(0), positions.size(), [&](size_t i) {
+      if (!finite(positions[i])) {
+        cell_of[i] = kLeftOut;
+        return;
+      }
       const Vec3 f = (positions[i] - origin_) * inv_cell_;
       int64_t c[3];
       for (int a = 0; a < 3; ++a) c[a] = std::clamp<int64_t>(int64_t(f[a]), 0, dims_[a] - 1);
@@ -52,6 +65,7 @@ void PointGrid::build(const std::vector<Vec3>& positions, const std::vector<Vec3
     std::vector<uint8_t> used(size_t(total), 0);
     double occupied = 0;
     for (uint32_t c : cell_of) {
+      if (c == kLeftOut) continue;
       occupied += used[c] ? 0 : 1;
       used[c] = 1;
     }
@@ -61,12 +75,18 @@ void PointGrid::build(const std::vector<Vec3>& positions, const std::vector<Vec3
   // Counting sort by cell; within a cell, points keep their index order.
   const size_t cells = size_t(dims_[0] * dims_[1] * dims_[2]);
   start_.assign(cells + 1, 0);
-  for (uint32_t c : cell_of) ++start_[c + 1];
+  size_t kept = 0;
+  for (uint32_t c : cell_of) {
+    if (c == kLeftOut) continue;
+    ++start_[c + 1];
+    ++kept;
+  }
   for (size_t c = 0; c < cells; ++c) start_[c + 1] += start_[c];
   std::vector<uint32_t> at(start_.begin(), start_.end() - 1);
-  entries_.resize(positions.size());
-  normals_.resize(positions.size());
+  entries_.resize(kept);
+  normals_.resize(kept);
   for (size_t i = 0; i < positions.size(); ++i) {
+    if (cell_of[i] == kLeftOut) continue;
     const uint32_t slot = at[cell_of[i]]++;
     entries_[slot] = Entry{positions[i], uint32_t(i)};
     normals_[slot] = normals[i];

@@ -23,7 +23,9 @@ class PointGrid {
 
   // The point nearest q among those within max_radius whose normal passes accept(normal), or
   // kNone, or kUndecided. An answer i >= 0 lies within twice the distance of the nearest
-  // accepted point.
+  // accepted point. Where points it rejects lie nearer within the scanned block, it is the
+  // nearest accepted one and fewer than 8 points lie nearer (as a search of the 8 nearest
+  // would find it).
   template <class Accept>
   int64_t nearest(const Vec3& q, float max_radius, Accept&& accept) const;
 
@@ -60,26 +62,42 @@ int64_t PointGrid::nearest(const Vec3& q, float max_radius, Accept&& accept) con
     lo[a] = int64_t(cell) - (f - cell < 0.5f ? 1 : 0);
     margin = std::min(margin, std::min(f - float(lo[a]), float(lo[a] + 2) - f) * cell_);
   }
-  float best_d2 = max_radius * max_radius;
+  const float max_d2 = max_radius * max_radius;
+  float best_d2 = max_d2;
   int64_t best = kNone;
+  bool rejected = false;  // a point within max_radius that accept() turned down
   const int64_t x0 = std::max<int64_t>(lo[0], 0), x1 = std::min<int64_t>(lo[0] + 2, dims_[0]);
-  for (int64_t z = std::max<int64_t>(lo[2], 0); x0 < x1 && z < std::min<int64_t>(lo[2] + 2, dims_[2]); ++z) {
-    for (int64_t y = std::max<int64_t>(lo[1], 0); y < std::min<int64_t>(lo[1] + 2, dims_[1]); ++y) {
-      const size_t row = size_t((z * dims_[1] + y) * dims_[0]);
-      for (uint32_t i = start_[row + size_t(x0)], end = start_[row + size_t(x1)]; i < end; ++i) {
-        const Entry& e = entries_[i];
-        const Vec3 d = e.p - q;
-        const float d2 = glm::dot(d, d);
-        if (d2 < best_d2 && accept(normals_[i])) {
-          best_d2 = d2;
-          best = int64_t(e.index);
+  // Calls visit(entry index, squared distance) for every point of the block.
+  auto scan = [&](auto&& visit) {
+    for (int64_t z = std::max<int64_t>(lo[2], 0); x0 < x1 && z < std::min<int64_t>(lo[2] + 2, dims_[2]); ++z) {
+      for (int64_t y = std::max<int64_t>(lo[1], 0); y < std::min<int64_t>(lo[1] + 2, dims_[1]); ++y) {
+        const size_t row = size_t((z * dims_[1] + y) * dims_[0]);
+        for (uint32_t i = start_[row + size_t(x0)], end = start_[row + size_t(x1)]; i < end; ++i) {
+          const Vec3 d = entries_[i].p - q;
+          visit(i, glm::dot(d, d));
         }
       }
     }
-  }
+  };
+  scan([&](uint32_t i, float d2) {
+    if (d2 >= best_d2) return;
+    if (accept(normals_[i])) {
+      best_d2 = d2;
+      best = int64_t(entries_[i].index);
+    } else {
+      rejected = true;
+    }
+  });
   if (best == kNone) return max_radius <= margin ? kNone : kUndecided;
+  const float best_d = std::sqrt(best_d2);
   // Accepted points outside the block are at least `margin` away.
-  return std::sqrt(best_d2) <= 2.0f * margin ? best : kUndecided;
+  if (!rejected) return best_d <= 2.0f * margin ? best : kUndecided;
+  // Rejected points lie nearer: answer only when every point nearer than `best` is in the block
+  // and fewer than 8 of them are.
+  if (best_d > margin) return kUndecided;
+  int nearer = 0;
+  scan([&](uint32_t, float d2) { nearer += d2 < best_d2 ? 1 : 0; });
+  return nearer < 8 ? best : kUndecided;
 }
 
 }  // namespace caustica
