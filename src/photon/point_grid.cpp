@@ -15,10 +15,9 @@ void PointGrid::build(const std::vector<Vec3>& positions, const std::vector<Vec3
   start_.clear();
   if (positions.empty()) return;
   // Points whose position is not finite are left out (no query can be near them).
-  auto finite = [](const Vec3& p) { return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z); };
   Bounds b;
   for (const Vec3& p : positions) {
-    if (finite(p)) b.extend(p);
+    if (is_finite(p)) b.extend(p);
   }
   if (b.empty()) return;
   const Vec3 e = b.extent();
@@ -52,7 +51,7 @@ void PointGrid::build(const std::vector<Vec3>& positions, const std::vector<Vec3
     origin_ = b.lo;
     inv_cell_ = 1.0f / cell;
     tbb::parallel_for(size_t(0), positions.size(), [&](size_t i) {
-      if (!finite(positions[i])) {
+      if (!is_finite(positions[i])) {
         cell_of[i] = kLeftOut;
         return;
       }

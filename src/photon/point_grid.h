@@ -62,8 +62,7 @@ int64_t PointGrid::nearest(const Vec3& q, float max_radius, Accept&& accept) con
     lo[a] = int64_t(cell) - (f - cell < 0.5f ? 1 : 0);
     margin = std::min(margin, std::min(f - float(lo[a]), float(lo[a] + 2) - f) * cell_);
   }
-  const float max_d2 = max_radius * max_radius;
-  float best_d2 = max_d2;
+  float best_d2 = max_radius * max_radius;
   int64_t best = kNone;
   bool rejected = false;  // a point within max_radius that accept() turned down
   const int64_t x0 = std::max<int64_t>(lo[0], 0), x1 = std::min<int64_t>(lo[0] + 2, dims_[0]);
