@@ -13,6 +13,18 @@ using namespace caustica::bench;
 
 namespace {
 
+// A ray for rtcIntersect1/rtcOccluded1, with no hit yet.
+RTCRayHit to_rayhit(const Ray& ray) {
+  RTCRayHit rh;
+  rh.ray.org_x = ray.origin.x, rh.ray.org_y = ray.origin.y, rh.ray.org_z = ray.origin.z;
+  rh.ray.dir_x = ray.dir.x, rh.ray.dir_y = ray.dir.y, rh.ray.dir_z = ray.dir.z;
+  rh.ray.tnear = 0.0f, rh.ray.tfar = ray.tmax, rh.ray.time = 0.0f;
+  rh.ray.mask = ~0u, rh.ray.id = 0, rh.ray.flags = 0;
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  return rh;
+}
+
 struct EmbreeScene {
   RTCDevice device = nullptr;
   RTCScene scene = nullptr;
@@ -51,23 +63,11 @@ struct EmbreeScene {
   bool cast(const Ray& ray, bool shadow) const {
     RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
-    RTCRayHit rh;
-    rh.ray.org_x = ray.origin.x;
-    rh.ray.org_y = ray.origin.y;
-    rh.ray.org_z = ray.origin.z;
-    rh.ray.dir_x = ray.dir.x;
-    rh.ray.dir_y = ray.dir.y;
-    rh.ray.dir_z = ray.dir.z;
-    rh.ray.tnear = 0.0f;
-    rh.ray.tfar = ray.tmax;
-    rh.ray.mask = ~0u;
-    rh.ray.flags = 0;
-    rh.ray.time = 0;
+    RTCRayHit rh = to_rayhit(ray);
     if (shadow) {
       rtcOccluded1(scene, &ctx, &rh.ray);
       return rh.ray.tfar < 0.0f;
     }
-    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rtcIntersect1(scene, &ctx, &rh);
     return rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
   }
@@ -157,14 +157,7 @@ void cast_group(const EmbreeScene& es, const Ray* rays, int mode, float* t) {
     return;
   }
   RTCRayHit rh[kGather];
-  for (int i = 0; i < kGather; ++i) {
-    const Ray& r = rays[i];
-    rh[i].ray.org_x = r.origin.x, rh[i].ray.org_y = r.origin.y, rh[i].ray.org_z = r.origin.z;
-    rh[i].ray.dir_x = r.dir.x, rh[i].ray.dir_y = r.dir.y, rh[i].ray.dir_z = r.dir.z;
-    rh[i].ray.tnear = 0.0f, rh[i].ray.tfar = r.tmax, rh[i].ray.time = 0.0f;
-    rh[i].ray.mask = ~0u, rh[i].ray.id = unsigned(i), rh[i].ray.flags = 0;
-    rh[i].hit.geomID = RTC_INVALID_GEOMETRY_ID;
-  }
+  for (int i = 0; i < kGather; ++i) rh[i] = to_rayhit(rays[i]);
   if (mode == 0) {
     for (int i = 0; i < kGather; ++i) rtcIntersect1(es.scene, &ctx, &rh[i]);
   } else {
