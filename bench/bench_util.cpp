@@ -93,7 +93,7 @@ const PathRays* cornell_bunny_path_rays() {
     p->loaded = std::make_unique<LoadedScene>(load_scene(source_dir() + "/scenes/cornell-bunny.json"));
     Scene& scene = p->scene();
     scene.wrap_accel([&](std::unique_ptr<Accelerator> a) { return std::make_unique<RecordingAccel>(std::move(a), p->rays); });
-    const auto integrator = create_integrator("path", scene.integrator_settings, scene.render);
+    const auto integrator = create_integrator("path", p->loaded->integrator_settings, scene.render);
     RenderOptions options;
     options.spp = 1;
     options.quiet = true;

@@ -6,7 +6,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <vector>
-#include "core/scene_loader.h"
+#include "io/scene_loader.h"
 #include "photon/photon_map.h"
 
 namespace caustica::bench {

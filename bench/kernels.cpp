@@ -57,7 +57,7 @@ void BM_PathRender(benchmark::State& state) {
   if (state.range(0) == 1 && !embree_available()) return state.SkipWithError("built without Embree");
   Scene& scene = recorded->scene();
   scene.set_accel(state.range(0) == 0 ? AccelKind::Bvh : AccelKind::Embree);
-  const auto integrator = create_integrator("path", scene.integrator_settings, scene.render);
+  const auto integrator = create_integrator("path", recorded->loaded->integrator_settings, scene.render);
   RenderOptions options;
   options.spp = 1;
   options.quiet = true;

@@ -6,8 +6,8 @@
 #include <cstdint>
 #include <fstream>
 #include <string>
-#include "core/json_reader.h"
-#include "core/meshes/mesh_file.h"
+#include "io/json_reader.h"
+#include "io/meshes/mesh_file.h"
 
 extern "C" const char* __ubsan_default_options() { return "halt_on_error=1:print_stacktrace=1"; }
 

@@ -3,8 +3,8 @@
 #include <cstddef>
 #include <cstdint>
 #include <string>
-#include "core/json_reader.h"
-#include "core/scene_loader.h"
+#include "io/json_reader.h"
+#include "io/scene_loader.h"
 
 // A folder that does not exist, so "file" keys cannot reach real meshes through relative paths.
 static const char* const kNoMeshDir = "/nonexistent/caustica-fuzz-no-meshes";

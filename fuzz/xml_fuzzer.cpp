@@ -3,8 +3,8 @@
 #include <cstddef>
 #include <cstdint>
 #include <string>
-#include "core/json_reader.h"
-#include "core/scene_loader.h"
+#include "io/json_reader.h"
+#include "io/scene_loader.h"
 
 // The scene "lives" in a folder that does not exist: relative includes, meshes and textures
 // cannot reach real files.

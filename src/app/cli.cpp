@@ -7,7 +7,7 @@
 #include "app/converge_command.h"
 #include "app/photons_command.h"
 #include "app/render_command.h"
-#include "core/json_reader.h"
+#include "io/json_reader.h"
 #include "trace/cluster.h"
 #include "trace/integrator.h"
 

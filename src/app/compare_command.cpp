@@ -1,5 +1,6 @@
 // `caustica compare`.
 #include "app/compare_command.h"
+#include "io/image_io.h"
 #include <iomanip>
 #include <iostream>
 #include <sstream>

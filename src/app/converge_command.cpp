@@ -13,6 +13,7 @@
 #include "app/report.h"
 #include "core/metrics.h"
 #include "core/rng.h"
+#include "io/image_io.h"
 #include "trace/render.h"
 
 namespace caustica {
@@ -81,7 +82,7 @@ int run_converge(const ConvergeArgs& args) {
   std::sort(checkpoints.begin(), checkpoints.end());
   // Create every integrator first, so that a bad name fails before any rendering.
   std::vector<std::unique_ptr<Integrator>> integrators;
-  for (const std::string& name : args.integrators) integrators.push_back(integrator_for(scene, name, args.common, true));
+  for (const std::string& name : args.integrators) integrators.push_back(integrator_for(loaded, name, args.common, true));
   {
     std::ostringstream command_settings;
     command_settings << "converge " << reference_name << " time=" << args.time << std::setprecision(17);

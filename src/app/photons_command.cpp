@@ -8,6 +8,7 @@
 #include <tbb/global_control.h>
 #include <unistd.h>
 #include "core/metrics.h"
+#include "io/image_io.h"
 #include "trace/photon_integrator.h"
 #include "trace/render.h"
 
@@ -107,7 +108,7 @@ int run_photons(const PhotonsArgs& args) {
   const int threads = thread_count(args.common);
   tbb::global_control control(tbb::global_control::max_allowed_parallelism, size_t(threads));
 
-  auto integrator = integrator_for(scene, "photon", args.common);
+  auto integrator = integrator_for(loaded, "photon", args.common);
   auto* photon = dynamic_cast<PhotonIntegrator*>(integrator.get());
   photon->preprocess(scene, {scene.render.seed, args.common.quiet});
   std::vector<const PhotonMap*> maps;

@@ -8,8 +8,9 @@
 #include <sstream>
 #include <tbb/global_control.h>
 #include "app/compare_command.h"
-#include "core/json_reader.h"
-#include "core/scene_loader.h"
+#include "io/image_io.h"
+#include "io/json_reader.h"
+#include "io/scene_loader.h"
 #include "trace/progress.h"
 #include "trace/render.h"
 
@@ -48,7 +49,7 @@ int run_render(const RenderArgs& args) {
     }
   }
 
-  std::unique_ptr<Integrator> integrator = integrator_for(scene, args.integrator, args.common);
+  std::unique_ptr<Integrator> integrator = integrator_for(loaded, args.integrator, args.common);
   if (args.aov && integrator->name().rfind("photon", 0) != 0) {
     throw InputError("--aov needs a photon integrator (photon or photon-direct), not \"" + integrator->name() + "\"");
   }

@@ -9,7 +9,7 @@
 #include <fstream>
 #include <iterator>
 #include <unistd.h>
-#include "core/json_reader.h"
+#include "io/json_reader.h"
 
 namespace caustica {
 namespace fs = std::filesystem;

@@ -35,7 +35,7 @@ LoadedScene load_scene_with(const SceneOptions& options) {
   return loaded;
 }
 
-std::unique_ptr<Integrator> integrator_for(const Scene& scene, const std::string& spec, const SceneOptions& options,
+std::unique_ptr<Integrator> integrator_for(const LoadedScene& loaded, const std::string& spec, const SceneOptions& options,
                                            bool lenient) {
   // "type:key=value:key=value": settings given with the name (converge compares variants).
   std::string requested = spec;
@@ -59,8 +59,9 @@ std::unique_ptr<Integrator> integrator_for(const Scene& scene, const std::string
       at = end + 1;
     }
   }
-  std::string type = scene.integrator_type;
-  JsonSource settings = scene.integrator_settings;
+  const Scene& scene = *loaded.scene;
+  std::string type = loaded.integrator_type;
+  JsonSource settings = loaded.integrator_settings;
   if (!requested.empty() && requested != type) {
     // The scene's settings were written for another integrator: use the defaults.
     if (!settings.value.empty() && !options.quiet) {

@@ -7,7 +7,7 @@
 #include <utility>
 #include <vector>
 #include <nlohmann/json.hpp>
-#include "core/scene_loader.h"
+#include "io/scene_loader.h"
 #include "trace/integrator.h"
 
 namespace caustica {
@@ -30,7 +30,7 @@ LoadedScene load_scene_with(const SceneOptions& options);
 // "photon:progressive=false:photons=50000" (values are JSON; a bare word is a string). The scene's integrator settings apply when
 // the type is the scene's own; the overrides apply on top. With `lenient`, photon flags are
 // skipped for integrators they do not apply to (converge compares several at once).
-std::unique_ptr<Integrator> integrator_for(const Scene& scene, const std::string& type, const SceneOptions& options,
+std::unique_ptr<Integrator> integrator_for(const LoadedScene& loaded, const std::string& type, const SceneOptions& options,
                                            bool lenient = false);
 
 int thread_count(const SceneOptions& options);

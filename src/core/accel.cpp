@@ -2,7 +2,7 @@
 #include "core/accel.h"
 #include "core/bvh.h"
 #include "core/embree_accel.h"
-#include "core/json_reader.h"
+#include "core/error.h"
 
 namespace caustica {
 

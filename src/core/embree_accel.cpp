@@ -2,7 +2,7 @@
 #ifdef CAUSTICA_EMBREE
 #include "core/embree_accel.h"
 #include <cmath>
-#include "core/json_reader.h"
+#include "core/error.h"
 
 namespace caustica {
 namespace {

@@ -1,6 +1,5 @@
-// Linear RGB float images and their files (EXR, HDR, PFM linear; PNG sRGB) via OpenImageIO.
+// Linear RGB float images in memory (their files: io/image_io.h).
 #pragma once
-#include <string>
 #include <vector>
 #include "core/math.h"
 
@@ -16,15 +15,7 @@ struct Image {
   Color mean() const;
 };
 
-// True for the file endings write_image understands.
-bool is_supported_image_path(const std::string& path);
-// Fails (InputError) when the extension is unknown or the folder does not exist or is not writable.
-void check_output_path(const std::string& path);
-// Writes through a temporary file in the same folder and renames it, so no half-written file
-// ever carries the target name. `exposure` (stops) applies to PNG only.
-void write_image(const std::string& path, const Image& image, float exposure = 0.0f);
-Image read_image(const std::string& path);
-
+// The sRGB transfer curve, clamped to [0, 1].
 float linear_to_srgb(float v);
 
 }  // namespace caustica

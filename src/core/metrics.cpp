@@ -4,7 +4,7 @@
 #include <OpenImageIO/imagebufalgo.h>
 #include <cmath>
 #include <limits>
-#include "core/json_reader.h"
+#include "core/error.h"
 
 namespace caustica {
 

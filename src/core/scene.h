@@ -1,13 +1,10 @@
-// The scene: camera, materials, lights, geometry in a BVH, render settings and the raw
-// integrator block (the integrator reads and validates its own settings).
+// The scene: camera, materials, lights, geometry in a BVH and render settings.
 #pragma once
 #include <memory>
 #include <string>
 #include <vector>
-#include <nlohmann/json.hpp>
 #include "core/bvh.h"
 #include "core/camera.h"
-#include "core/json_reader.h"
 #include "core/light.h"
 #include "core/pixel_filter.h"
 #include "core/material.h"
@@ -23,14 +20,6 @@ struct RenderSettings {
   int max_depth = 16;
   AccelKind accel = default_accel();  // the ray-casting backend
   PixelFilter filter;                 // the pixel reconstruction filter (box by default)
-};
-
-// Where a JSON block came from, so that later readers can name file and JSON pointer.
-struct JsonSource {
-  nlohmann::json value = nlohmann::json::object();
-  std::string file;     // scene file name, for messages
-  std::string pointer;  // JSON pointer of `value` inside the file
-  std::shared_ptr<const SourceMap> sources;  // set when the scene was translated (Mitsuba XML)
 };
 
 struct SurfaceHit {
@@ -60,8 +49,6 @@ class Scene {
  public:
   Camera camera;
   RenderSettings render;
-  std::string integrator_type = "path";
-  JsonSource integrator_settings;  // the integrator block without "type"
   std::string source_file;
 
   std::vector<std::unique_ptr<Material>> materials;

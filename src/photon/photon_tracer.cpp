@@ -6,7 +6,7 @@
 #include <sstream>
 #include <unistd.h>
 #include <tbb/parallel_for.h>
-#include "core/json_reader.h"
+#include "core/error.h"
 #include "core/sampler.h"
 
 namespace caustica {

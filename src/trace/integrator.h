@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 #include "core/image.h"
-#include "core/json_reader.h"
+#include "io/json_reader.h"
 #include "core/sampler.h"
 #include "core/scene.h"
 

@@ -5,7 +5,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 #include <nlohmann/json.hpp>
-#include "core/image.h"
+#include "io/image_io.h"
 #include "support/run.h"
 
 using namespace caustica;

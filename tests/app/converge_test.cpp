@@ -4,7 +4,7 @@
 #include <sstream>
 #include <nlohmann/json.hpp>
 #include "app/converge_command.h"
-#include "core/image.h"
+#include "io/image_io.h"
 #include "support/run.h"
 
 using namespace caustica;

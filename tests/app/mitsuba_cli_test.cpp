@@ -1,7 +1,7 @@
 // The command line on Mitsuba scenes: -D, --ignore-unsupported, and --accel.
 #include <catch2/catch.hpp>
 #include "core/accel.h"
-#include "core/image.h"
+#include "io/image_io.h"
 #include "support/run.h"
 #include "support/temp_dir.h"
 

@@ -2,7 +2,7 @@
 #include <catch2/catch.hpp>
 #include <cstring>
 #include <filesystem>
-#include "core/image.h"
+#include "io/image_io.h"
 #include "support/run.h"
 
 using namespace caustica;

@@ -1,7 +1,7 @@
 // The command line of progressive photon mapping and sppm: flags, integrator specs, renders.
 #include <catch2/catch.hpp>
 #include <filesystem>
-#include "core/image.h"
+#include "io/image_io.h"
 #include "support/run.h"
 
 using namespace caustica;

@@ -5,8 +5,8 @@
 #include <cstdlib>
 #include <filesystem>
 #include "app/report.h"
-#include "core/image.h"
-#include "core/json_reader.h"
+#include "io/image_io.h"
+#include "io/json_reader.h"
 #include "support/temp_dir.h"
 
 using namespace caustica;

@@ -2,7 +2,7 @@
 #include <catch2/catch.hpp>
 #include "core/accel.h"
 #include "core/bvh.h"
-#include "core/json_reader.h"
+#include "io/json_reader.h"
 #include "core/sampling.h"
 #include "support/random.h"
 

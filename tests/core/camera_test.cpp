@@ -1,7 +1,7 @@
 // The camera: a thin lens focuses every ray of a pixel on one point of the plane of focus.
 #include <catch2/catch.hpp>
 #include "core/camera.h"
-#include "core/mitsuba/translate.h"
+#include "io/mitsuba/translate.h"
 #include "support/errors.h"
 #include "support/random.h"
 

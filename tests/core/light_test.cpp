@@ -4,7 +4,7 @@
 #include "support/scenes.h"
 #include "core/lights/environment.h"
 #include "core/lights/spot.h"
-#include "core/scene_loader.h"
+#include "io/scene_loader.h"
 #include "support/chi2.h"
 #include "support/random.h"
 

@@ -1,6 +1,6 @@
 // Error metrics on images with known error.
 #include <catch2/catch.hpp>
-#include "core/json_reader.h"
+#include "io/json_reader.h"
 #include "core/metrics.h"
 #include "core/rng.h"
 

@@ -1,6 +1,6 @@
 // Self-intersection: rays leaving a surface, even at grazing angles, never hit it again.
 #include <catch2/catch.hpp>
-#include "core/scene_loader.h"
+#include "io/scene_loader.h"
 #include "core/rng.h"
 #include "core/sampling.h"
 

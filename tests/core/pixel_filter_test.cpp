@@ -1,6 +1,6 @@
 // Pixel filters: samples distributed as the filter (moments and a quantile), and Mitsuba's rfilter.
 #include <catch2/catch.hpp>
-#include "core/mitsuba/translate.h"
+#include "io/mitsuba/translate.h"
 #include "core/pixel_filter.h"
 
 using namespace caustica;

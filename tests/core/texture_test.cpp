@@ -2,8 +2,8 @@
 // OpenImageIO's TextureSystem (orientation, wrap modes, sRGB), sphere UVs, OBJ vt/vn,
 // face_normals, and the errors for missing or unreadable texture files.
 #include <catch2/catch.hpp>
-#include "core/image.h"
-#include "core/scene_loader.h"
+#include "io/image_io.h"
+#include "io/scene_loader.h"
 #include "core/textures/bitmap.h"
 #include "support/temp_dir.h"
 

@@ -2,7 +2,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include "core/rng.h"
-#include "core/scene_loader.h"
+#include "io/scene_loader.h"
 #include "photon/density.h"
 
 using namespace caustica;

@@ -2,7 +2,7 @@
 #include <catch2/catch.hpp>
 #include <cstring>
 #include <tbb/global_control.h>
-#include "core/scene_loader.h"
+#include "io/scene_loader.h"
 #include "photon/photon_tracer.h"
 
 using namespace caustica;

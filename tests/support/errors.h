@@ -2,7 +2,7 @@
 #pragma once
 #include <functional>
 #include <string>
-#include "core/json_reader.h"
+#include "io/json_reader.h"
 
 namespace caustica::test {
 

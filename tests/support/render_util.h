@@ -2,7 +2,7 @@
 #pragma once
 #include <string>
 #include <tbb/global_control.h>
-#include "core/scene_loader.h"
+#include "io/scene_loader.h"
 #include "support/temp_dir.h"
 #include "trace/render.h"
 

@@ -1,7 +1,7 @@
 // Integrators against analytic answers: the furnace, and the factory's errors.
 #include <catch2/catch.hpp>
 #include <tbb/global_control.h>
-#include "core/scene_loader.h"
+#include "io/scene_loader.h"
 #include "support/scenes.h"
 #include "trace/render.h"
 
@@ -11,7 +11,7 @@ namespace {
 Color render_mean(const std::string& text, uint64_t seed = 0) {
   LoadedScene loaded = parse_scene(text, "furnace.json", ".");
   Scene& scene = *loaded.scene;
-  auto integrator = create_integrator(scene.integrator_type, scene.integrator_settings, scene.render);
+  auto integrator = create_integrator(loaded.integrator_type, loaded.integrator_settings, scene.render);
   integrator->preprocess(scene, {seed, true});
   RenderOptions options;
   options.spp = scene.render.spp;

@@ -3,7 +3,7 @@
 // directional light.
 #include <catch2/catch.hpp>
 #include "support/scenes.h"
-#include "core/scene_loader.h"
+#include "io/scene_loader.h"
 #include "photon/photon_tracer.h"
 #include "support/render_util.h"
 

@@ -10,7 +10,7 @@
 #include <optional>
 #include <thread>
 #include <tbb/global_control.h>
-#include "core/scene_loader.h"
+#include "io/scene_loader.h"
 #include "support/render_util.h"
 #include "support/scenes.h"
 #include "trace/render.h"

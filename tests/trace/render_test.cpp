@@ -1,7 +1,7 @@
 // The render loop: determinism across thread counts, seeds, time budget, cancellation.
 #include <catch2/catch.hpp>
 #include <tbb/global_control.h>
-#include "core/scene_loader.h"
+#include "io/scene_loader.h"
 #include "trace/render.h"
 
 using namespace caustica;

@@ -2,7 +2,7 @@
 #include "core/textures/bitmap.h"
 #include <OpenImageIO/texture.h>
 #include "core/image.h"
-#include "core/json_reader.h"
+#include "core/error.h"
 
 namespace caustica {
 namespace {

@@ -6,11 +6,11 @@
 #include <cmath>
 #include <functional>
 #include <nlohmann/json.hpp>
-#include "core/json_reader.h"
-#include "core/mitsuba/spectrum.h"
-#include "core/mitsuba/translate.h"
-#include "core/mitsuba/xml_tree.h"
-#include "core/scene_loader.h"
+#include "io/json_reader.h"
+#include "io/mitsuba/spectrum.h"
+#include "io/mitsuba/translate.h"
+#include "io/mitsuba/xml_tree.h"
+#include "io/scene_loader.h"
 #include "support/errors.h"
 #include "support/render_util.h"
 #include "support/temp_dir.h"
@@ -82,7 +82,7 @@ double total_area(const Scene& scene) {
 // Renders a loaded scene as the application does: the scene's integrator, size, spp and seed.
 Image render_loaded(LoadedScene& loaded) {
   Scene& scene = *loaded.scene;
-  auto integ = create_integrator(scene.integrator_type, scene.integrator_settings, scene.render);
+  auto integ = create_integrator(loaded.integrator_type, loaded.integrator_settings, scene.render);
   integ->preprocess(scene, {scene.render.seed, true});
   RenderOptions options;
   options.spp = scene.render.spp;
@@ -697,7 +697,7 @@ TEST_CASE("mitsuba: film crop, sampler sample_count and integrator max_depth", "
     LoadedScene loaded = parse_scene(scene_with(""), "scene.xml", ".");
     CHECK(loaded.scene->render.spp == 3);
     CHECK(loaded.scene->render.seed == 11);
-    CHECK(loaded.scene->integrator_type == "path");
+    CHECK(loaded.integrator_type == "path");
   }
   SECTION("max_depth counts segments: 2 is our 1, -1 is unlimited (1024), no value is unlimited") {
     auto depth = [&](const std::string& integ) { return parse_scene(scene_with("", integ), "scene.xml", ".").scene->render.max_depth; };
@@ -861,6 +861,6 @@ TEST_CASE("mitsuba: 0.6 sppm, ppm and photonmapper become sppm, progressive phot
   for (const char* body : {R"(<integrator type="sppm"><integer name="photonCount" value="100"/><float name="initialRadius" value="0.25"/><float name="alpha" value="0.7"/></integrator>)",
                                   R"(<integrator type="ppm"><integer name="photonCount" value="100"/><float name="alpha" value="0.5"/></integrator>)"}) {
     LoadedScene loaded = parse_scene(xml_scene(std::string(body) + sensor, "0.6.0"), "scene.xml", ".");
-    CHECK_NOTHROW(create_integrator(loaded.scene->integrator_type, loaded.scene->integrator_settings, loaded.scene->render));
+    CHECK_NOTHROW(create_integrator(loaded.integrator_type, loaded.integrator_settings, loaded.scene->render));
   }
 }

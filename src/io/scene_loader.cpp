@@ -1,16 +1,16 @@
 // Scene file loader: every key validated, every error located by file and JSON pointer.
-#include "core/scene_loader.h"
+#include "io/scene_loader.h"
 #include <filesystem>
 #include <fstream>
 #include <map>
 #include <sstream>
-#include "core/bsdf/bsdf_reader.h"
-#include "core/image.h"
-#include "core/json_reader.h"
+#include "io/bsdf_reader.h"
+#include "io/image_io.h"
+#include "io/json_reader.h"
 #include "core/lights/directional.h"
 #include "core/lights/environment.h"
 #include "core/lights/spot.h"
-#include "core/meshes/mesh_file.h"
+#include "io/meshes/mesh_file.h"
 
 namespace caustica {
 namespace fs = std::filesystem;
@@ -142,14 +142,14 @@ struct Loader {
 
   void read_integrator(const json& j, const std::string& p) {
     if (!j.is_object()) r.fail(p, "expected an object");
-    JsonSource& src = scene().integrator_settings;
+    JsonSource& src = out.integrator_settings;
     src.file = r.file();
     src.pointer = p;
     src.sources = r.sources();
     src.value = json::object();
     for (auto it = j.begin(); it != j.end(); ++it) {
       if (it.key() == "type") {
-        scene().integrator_type = r.string(it.value(), child(p, "type"));
+        out.integrator_type = r.string(it.value(), child(p, "type"));
       } else {
         src.value[it.key()] = it.value();
       }

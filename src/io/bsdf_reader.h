@@ -3,7 +3,7 @@
 #include <memory>
 #include <vector>
 #include <nlohmann/json.hpp>
-#include "core/json_reader.h"
+#include "io/json_reader.h"
 #include "core/material.h"
 #include "core/textures/texture.h"
 

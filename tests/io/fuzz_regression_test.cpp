@@ -4,8 +4,8 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
-#include "core/json_reader.h"
-#include "core/scene_loader.h"
+#include "io/json_reader.h"
+#include "io/scene_loader.h"
 
 using namespace caustica;
 using Catch::Matchers::Contains;

@@ -1,6 +1,6 @@
 // Texture blocks with Mitsuba 3's names: bitmap (filename, filter_type, wrap_mode, raw,
 // to_uv) and checkerboard (color0, color1, to_uv).
-#include "core/textures/texture_reader.h"
+#include "io/texture_reader.h"
 #include <filesystem>
 #include "core/textures/bitmap.h"
 

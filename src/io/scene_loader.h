@@ -2,7 +2,7 @@
 #pragma once
 #include <string>
 #include <vector>
-#include "core/mitsuba/translate.h"
+#include "io/mitsuba/translate.h"
 #include "core/scene.h"
 
 namespace caustica {
@@ -10,6 +10,8 @@ namespace caustica {
 struct LoadedScene {
   std::unique_ptr<Scene> scene;
   std::vector<std::string> warnings;
+  std::string integrator_type = "path";
+  JsonSource integrator_settings;  // the integrator block without "type" (the integrator reads it)
   size_t triangle_count = 0, sphere_count = 0;
 };
 

@@ -1,5 +1,5 @@
 // JSON parsing with file:line:column syntax errors and pointer-named semantic errors.
-#include "core/json_reader.h"
+#include "io/json_reader.h"
 #include <algorithm>
 #include <cctype>
 #include <cmath>

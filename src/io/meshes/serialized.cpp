@@ -7,8 +7,8 @@
 #include <limits>
 #include <sstream>
 #include <zlib.h>
-#include "core/json_reader.h"
-#include "core/meshes/mesh_file.h"
+#include "core/error.h"
+#include "io/meshes/mesh_file.h"
 
 namespace caustica {
 namespace {

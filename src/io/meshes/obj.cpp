@@ -4,8 +4,8 @@
 #include <fstream>
 #include <sstream>
 #include <tiny_obj_loader.h>
-#include "core/json_reader.h"
-#include "core/meshes/mesh_file.h"
+#include "core/error.h"
+#include "io/meshes/mesh_file.h"
 
 namespace caustica {
 namespace {

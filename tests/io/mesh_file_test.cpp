@@ -7,9 +7,9 @@
 #include <functional>
 #include <limits>
 #include <zlib.h>
-#include "core/json_reader.h"
-#include "core/meshes/mesh_file.h"
-#include "core/scene_loader.h"
+#include "io/json_reader.h"
+#include "io/meshes/mesh_file.h"
+#include "io/scene_loader.h"
 #include "support/errors.h"
 #include "support/run.h"
 #include "support/temp_dir.h"

@@ -1,5 +1,5 @@
 // Mesh versions of Mitsuba's rectangle, cube, disk and cylinder.
-#include "core/mitsuba/shapes.h"
+#include "io/mitsuba/shapes.h"
 #include <cmath>
 
 namespace caustica {

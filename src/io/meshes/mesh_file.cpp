@@ -1,9 +1,9 @@
 // Dispatch by extension and the checks every reader shares.
-#include "core/meshes/mesh_file.h"
+#include "io/meshes/mesh_file.h"
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include "core/json_reader.h"
+#include "core/error.h"
 
 namespace caustica {
 

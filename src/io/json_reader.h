@@ -3,19 +3,13 @@
 #include <initializer_list>
 #include <map>
 #include <memory>
-#include <stdexcept>
 #include <string>
 #include <vector>
 #include <nlohmann/json.hpp>
+#include "core/error.h"
 #include "core/math.h"
 
 namespace caustica {
-
-// Bad input of any kind (scene file, command line, image file): the message is for the user.
-class InputError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
 
 // Parses JSON text; a syntax error becomes "file:line:column: message" with the line and a caret.
 nlohmann::json parse_json_text(const std::string& text, const std::string& file);
@@ -54,6 +48,14 @@ class JsonReader {
   std::string where(const std::string& pointer) const;
   std::string file_;
   std::shared_ptr<const SourceMap> sources_;
+};
+
+// Where a JSON block came from, so that later readers can name file and JSON pointer.
+struct JsonSource {
+  nlohmann::json value = nlohmann::json::object();
+  std::string file;     // scene file name, for messages
+  std::string pointer;  // JSON pointer of `value` inside the file
+  std::shared_ptr<const SourceMap> sources;  // set when the scene was translated (Mitsuba XML)
 };
 
 inline std::string child(const std::string& pointer, const std::string& key) { return pointer + "/" + key; }

@@ -1,7 +1,7 @@
 // Reads a texture block: {"type": "bitmap", "filename": ...} or {"type": "checkerboard", ...}.
 #pragma once
 #include <memory>
-#include "core/bsdf/bsdf_reader.h"
+#include "io/bsdf_reader.h"
 
 namespace caustica {
 

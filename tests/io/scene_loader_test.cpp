@@ -3,8 +3,8 @@
 #include <catch2/catch.hpp>
 #include <filesystem>
 #include <limits>
-#include "core/json_reader.h"
-#include "core/scene_loader.h"
+#include "io/json_reader.h"
+#include "io/scene_loader.h"
 #include "support/temp_dir.h"
 
 using namespace caustica;

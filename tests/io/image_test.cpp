@@ -1,9 +1,9 @@
-// Image files: round trips through EXR, PFM and PNG, exposure, output-path checks, atomic
+// Image files (io/image_io.h): round trips through EXR, PFM and PNG, exposure, output-path checks, atomic
 // writes (no temporary left behind) and unreadable inputs.
 #include <catch2/catch.hpp>
 #include <filesystem>
-#include "core/image.h"
-#include "core/json_reader.h"
+#include "io/image_io.h"
+#include "io/json_reader.h"
 #include "core/rng.h"
 #include "support/temp_dir.h"
 

@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 #include <nlohmann/json.hpp>
-#include "core/json_reader.h"
-#include "core/mitsuba/xml_tree.h"
+#include "io/json_reader.h"
+#include "io/mitsuba/xml_tree.h"
 
 namespace caustica {
 

@@ -11,8 +11,8 @@
 #include <cstring>
 #include <fstream>
 #include <sstream>
-#include "core/json_reader.h"
-#include "core/meshes/mesh_file.h"
+#include "core/error.h"
+#include "io/meshes/mesh_file.h"
 
 namespace caustica {
 namespace {

@@ -1,7 +1,7 @@
 // Material blocks with Mitsuba 3's names: what each type builds, the named indices, and the
 // errors for bad values (each naming the file and the JSON pointer).
 #include <catch2/catch.hpp>
-#include "core/bsdf/bsdf_reader.h"
+#include "io/bsdf_reader.h"
 #include "core/bsdf/conductor.h"
 #include "core/bsdf/dielectric.h"
 #include "core/bsdf/fresnel.h"

@@ -6,7 +6,7 @@
 // the tables) and, for D65, a 6504 K Planck spectrum; reflectances are then scaled so that a flat
 // spectrum of 1 is white exactly, which Mitsuba's tables give too. Differences from Mitsuba are
 // about a per cent for smooth spectra.
-#include "core/mitsuba/spectrum.h"
+#include "io/mitsuba/spectrum.h"
 #include <algorithm>
 #include <cmath>
 

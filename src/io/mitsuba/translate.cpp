@@ -1,14 +1,14 @@
 // Mitsuba plugins to our scene document. Each plugin's properties are checked: a property we
 // do not know is an error (as in Mitsuba, which refuses unqueried properties), except those
 // listed as harmless for that plugin, which are dropped.
-#include "core/mitsuba/translate.h"
+#include "io/mitsuba/translate.h"
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <map>
 #include <set>
-#include "core/mitsuba/shapes.h"
-#include "core/mitsuba/spectrum.h"
+#include "io/mitsuba/shapes.h"
+#include "io/mitsuba/spectrum.h"
 
 namespace caustica {
 namespace fs = std::filesystem;

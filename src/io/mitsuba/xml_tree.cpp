@@ -1,5 +1,5 @@
 // Mitsuba XML through pugixml into XmlObjects; see xml_tree.h.
-#include "core/mitsuba/xml_tree.h"
+#include "io/mitsuba/xml_tree.h"
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -9,7 +9,7 @@
 #include <set>
 #include <sstream>
 #include <pugixml.hpp>
-#include "core/json_reader.h"
+#include "io/json_reader.h"
 
 namespace caustica {
 namespace fs = std::filesystem;

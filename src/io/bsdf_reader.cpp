@@ -1,6 +1,6 @@
 // Material blocks: diffuse, conductor, roughconductor, dielectric, thindielectric,
 // roughdielectric, phong, twosided, plus our aliases mirror and glass.
-#include "core/bsdf/bsdf_reader.h"
+#include "io/bsdf_reader.h"
 #include "core/bsdf/conductor.h"
 #include "core/bsdf/dielectric.h"
 #include "core/bsdf/diffuse.h"
@@ -9,7 +9,7 @@
 #include "core/bsdf/phong.h"
 #include "core/bsdf/plastic.h"
 #include "core/bsdf/twosided.h"
-#include "core/textures/texture_reader.h"
+#include "io/texture_reader.h"
 
 namespace caustica {
 namespace {
