@@ -37,6 +37,8 @@ class Light {
   // Radiant intensity per unit area (Le cos) or per light (I) leaving along dir.
   virtual Color emitted_towards(const Vec3& normal, const Vec3& dir) const = 0;
   virtual Color power() const = 0;
+  // The radiance that an emitting surface sends out of its front side (area lights; zero else).
+  virtual Color surface_radiance() const { return Color(0.0f); }
   virtual bool is_delta() const = 0;
   virtual Bounds bounds() const = 0;
   // Solid-angle density with which sample_li from x picks the point y (normal ny) on the light;
@@ -94,7 +96,7 @@ class AreaLight final : public Light {
   Bounds bounds() const override;
   float pdf_li(const Vec3& x, const Vec3& y, const Vec3& ny) const override;
   float area() const { return area_; }
-  const Color& radiance() const { return radiance_; }
+  Color surface_radiance() const override { return radiance_; }
 
  private:
   Vec3 sample_point(Vec2 u, Vec3& n) const;

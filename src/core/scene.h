@@ -7,7 +7,7 @@
 #include "core/camera.h"
 #include "core/light.h"
 #include "core/pixel_filter.h"
-#include "core/material.h"
+#include "core/bsdf/bsdf.h"
 #include "core/textures/texture.h"
 
 namespace caustica {
@@ -26,7 +26,7 @@ struct SurfaceHit {
   Vec3 p;
   Vec3 n;  // geometric normal (front side = emitting / outside), unit length
   float t = kInfinity;
-  const Material* material = nullptr;
+  const Bsdf* material = nullptr;
   int32_t light = -1;
   Frame frame;      // the shading frame: around the interpolated vertex normal, or n
   ShadingPoint sp;  // texture coordinates
@@ -51,7 +51,7 @@ class Scene {
   RenderSettings render;
   std::string source_file;
 
-  std::vector<std::unique_ptr<Material>> materials;
+  std::vector<std::unique_ptr<Bsdf>> materials;
   std::vector<std::unique_ptr<Texture>> textures;  // read by the materials
   std::vector<TriangleAttributes> attributes;      // indexed by Primitive::attributes
   std::vector<std::string> material_names;
@@ -69,6 +69,11 @@ class Scene {
   // Chooses a light in proportion to its power.
   const Light* sample_light(float u, float& pmf) const;
   float light_pmf(size_t i) const { return light_distribution_.pmf(i); }
+  // Radiance that the surface at `hit` emits towards local direction wo (its area light's, front
+  // side only).
+  Color emitted(const SurfaceHit& hit, const Vec3& wo_local) const {
+    return hit.light >= 0 && wo_local.z > 0 ? lights[size_t(hit.light)]->surface_radiance() : Color(0.0f);
+  }
   // Radiance arriving along a ray that leaves the scene in direction dir (environment lights).
   Color escaped(const Vec3& dir) const;
   // The indices of those lights in `lights`.

@@ -149,7 +149,7 @@ void JsonReader::warn(const std::string& pointer, const std::string& message, st
 static std::string type_name(const nlohmann::json& v) { return v.type_name(); }
 
 void JsonReader::check_object(const nlohmann::json& obj, const std::string& pointer,
-                              std::initializer_list<const char*> known) const {
+                              const std::vector<const char*>& known) const {
   if (!obj.is_object()) fail(pointer, "expected an object, found " + type_name(obj));
   for (auto it = obj.begin(); it != obj.end(); ++it) {
     bool ok = false;

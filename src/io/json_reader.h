@@ -30,7 +30,7 @@ class JsonReader {
 
   // Every key of `obj` must be in `known`; an object is required.
   void check_object(const nlohmann::json& obj, const std::string& pointer,
-                    std::initializer_list<const char*> known) const;
+                    const std::vector<const char*>& known) const;
   const nlohmann::json& require(const nlohmann::json& obj, const std::string& pointer, const char* key) const;
 
   double number(const nlohmann::json& v, const std::string& pointer) const;  // finite, fits a float

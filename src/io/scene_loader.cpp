@@ -168,17 +168,19 @@ struct Loader {
 
   // Reads a material block and adds it (and the materials nested in it) under `name`.
   uint32_t add_material(const std::string& name, const json& m, const std::string& p) {
-    std::vector<std::unique_ptr<Material>> nested;
+    std::vector<std::unique_ptr<Bsdf>> nested;
     const MaterialContext ctx{r, base_dir, nested, scene().textures, out.warnings};
-    std::unique_ptr<Material> mat = read_material(ctx, m, p);
+    std::unique_ptr<Bsdf> mat = read_bsdf(ctx, m, p);
     for (auto& n : nested) {
       scene().materials.push_back(std::move(n));
       scene().material_names.push_back(name + " (nested)");
+      emission_.push_back(Color(0.0f));
     }
     const uint32_t id = static_cast<uint32_t>(scene().materials.size());
     material_ids[name] = id;
     scene().materials.push_back(std::move(mat));
     scene().material_names.push_back(name);
+    emission_.push_back(m.contains("emission") ? r.color(m["emission"], child(p, "emission")) : Color(0.0f));
     return id;
   }
 
@@ -254,7 +256,7 @@ struct Loader {
   void add_object(std::vector<Primitive> shapes, uint32_t mat, const json& j, const std::string& p) {
     const bool flip = j.contains("flip_normal") && r.boolean(j["flip_normal"], child(p, "flip_normal"));
     if (shapes.empty()) {
-      if (scene().materials[mat]->is_emissive()) r.fail(p, "emissive object has zero area (all its triangles are degenerate)");
+      if (!is_black(emission_[mat])) r.fail(p, "emissive object has zero area (all its triangles are degenerate)");
       r.warn(p, "object has no usable triangles and is left out", out.warnings);
       return;
     }
@@ -263,10 +265,9 @@ struct Loader {
       s.material = mat;
       s.flip = flip;
     }
-    const Material& m = *scene().materials[mat];
-    if (m.is_emissive()) {
+    if (!is_black(emission_[mat])) {
       light = static_cast<int32_t>(scene().lights.size());
-      auto area_light = std::make_unique<AreaLight>(shapes, m.emission);
+      auto area_light = std::make_unique<AreaLight>(shapes, emission_[mat]);
       if (!(area_light->area() > 0.0f)) r.fail(p, "emissive object has zero area");
       scene().lights.push_back(std::move(area_light));
     }
@@ -545,6 +546,7 @@ struct Loader {
   }
 
   size_t degenerate_ = 0;
+  std::vector<Color> emission_{};  // by material id: the radiance of the area lights it makes
 };
 
 }  // namespace

@@ -56,7 +56,7 @@ Color radiance_estimate(const PhotonMap& map, const SurfaceHit& hit, const Vec3&
                         std::vector<Neighbour>& scratch, EstimateInfo* info) {
   const Vec3 n_side = glm::dot(wo, hit.n) >= 0 ? hit.n : -hit.n;
   const Vec3 wo_l = hit.frame.to_local(wo);
-  const Material& m = *hit.material;
+  const Bsdf& m = *hit.material;
   return gather(map, hit.p, n_side, s, scratch, info,
                 [&](const Vec3& wi) { return m.eval(wo_l, hit.frame.to_local(wi), hit.sp); });
 }

@@ -1,7 +1,7 @@
 // Density estimation on photon maps (Jensen 1996) and precomputed irradiance (Christensen 1999).
 #pragma once
 #include <vector>
-#include "core/material.h"
+#include "core/bsdf/bsdf.h"
 #include "core/scene.h"
 #include "photon/photon_map.h"
 #include "photon/point_grid.h"

@@ -8,6 +8,7 @@
 #include <tbb/parallel_for.h>
 #include "core/error.h"
 #include "core/sampler.h"
+#include "photon/gather.h"
 
 namespace caustica {
 namespace {
@@ -36,7 +37,7 @@ class Emitter {
   Emitter(const Scene& scene, bool caustic, float glossy_threshold)
       : scene_(scene), caustic_(caustic), scene_radius_(0.5f * glm::length(scene.bounds().extent())) {
     for (const ObjectInfo& o : scene.objects) {
-      const Material& m = *scene.materials[o.material];
+      const Bsdf& m = *scene.materials[o.material];
       if (!is_gather_surface(m, glossy_threshold) || m.has(kBsdfSpecular)) targets_.push_back({o.centre, o.radius});
     }
   }
@@ -126,7 +127,7 @@ void trace_photon(const Scene& scene, Ray ray, Color flux, bool caustic, const P
     if (!scene.intersect(ray, hit)) return;
     const Vec3 wo = -ray.dir;
     const Vec3 wo_l = hit.frame.to_local(wo);
-    const Material& m = *hit.material;
+    const Bsdf& m = *hit.material;
     const bool gather = is_gather_surface(m, s.glossy_threshold);
     if (gather) {
       const Vec3 n_side = wo_l.z >= 0 ? hit.n : -hit.n;

@@ -24,7 +24,7 @@ struct EyePath {
       if (visible) L += beta * escaped_mis(scene, ray.dir, from);
       return false;
     }
-    if (visible) L += beta * emission_mis(scene, hit, hit.material->emitted(hit.frame.to_local(-ray.dir)), from);
+    if (visible) L += beta * emission_mis(scene, hit, scene.emitted(hit, hit.frame.to_local(-ray.dir)), from);
     return depth < max_depth;
   }
 

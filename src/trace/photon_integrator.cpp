@@ -7,6 +7,7 @@
 #include <iostream>
 #include <sstream>
 #include <tbb/parallel_invoke.h>
+#include "photon/gather.h"
 #include "photon/photon_tracer.h"
 #include "trace/eye_path.h"
 
@@ -189,8 +190,8 @@ Color PhotonIntegrator::final_gather(const Scene& scene, const SurfaceHit& hit, 
         if (depth == 0) sum += throughput * escaped_mis(scene, ray.dir, from);
         break;
       }
-      const Material& m = *g.material;
-      if (depth == 0) sum += throughput * emission_mis(scene, g, m.emitted(g.frame.to_local(-ray.dir)), from);
+      const Bsdf& m = *g.material;
+      if (depth == 0) sum += throughput * emission_mis(scene, g, scene.emitted(g, g.frame.to_local(-ray.dir)), from);
       if (eye_depth + 1 + depth == settings_.max_depth) break;
       if (is_gather_surface(m, settings_.glossy_threshold)) {
         sum += throughput * indirect_at(g, -ray.dir, scratch, eye_depth + 1 + depth);
@@ -246,7 +247,7 @@ Color PhotonIntegrator::trace_eye(const Ray& start, const Scene& scene, Sampler&
     if (!path.meet(scene, ray, depth, sampler, hit)) break;
     const Vec3 wo = -ray.dir;
     const Vec3 wo_l = hit.frame.to_local(wo);
-    const Material& m = *hit.material;
+    const Bsdf& m = *hit.material;
     if (is_gather_surface(m, settings_.glossy_threshold)) {
       if (sampler.aov) record_aov(hit, wo, sampler.aov, scratch);
       if (!final_gather_) return L + beta * radiance_estimate(global_, hit, wo, at_depth(global_est_, depth), scratch);

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <iostream>
 #include <sstream>
+#include "photon/gather.h"
 #include "photon/photon_tracer.h"
 #include "trace/eye_path.h"
 
@@ -77,7 +78,7 @@ Color SppmIntegrator::Li(const Ray& camera_ray, const Scene& scene, Sampler& sam
     SurfaceHit hit;
     if (!path.meet(scene, ray, depth, sampler, hit)) break;
     const Vec3 wo = -ray.dir;
-    const Material& m = *hit.material;
+    const Bsdf& m = *hit.material;
     if (!is_gather_surface(m, settings_.glossy_threshold)) {
       if (!m.is_specular()) path.L += path.beta * estimate_direct(scene, hit, wo, sampler, 1.0f);
       if (!path.scatter(hit, wo, sampler, ray)) break;

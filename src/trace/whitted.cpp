@@ -18,8 +18,8 @@ Color WhittedIntegrator::trace(const Ray& ray, const Scene& scene, Sampler& samp
   if (!scene.intersect(ray, hit)) return scene.escaped(ray.dir);
   const Vec3 wo = -ray.dir;
   const Vec3 wo_l = hit.frame.to_local(wo);
-  const Material& m = *hit.material;
-  Color L = m.emitted(wo_l);
+  const Bsdf& m = *hit.material;
+  Color L = scene.emitted(hit, wo_l);
   if (m.has(kBsdfDiffuse)) return L + estimate_direct(scene, hit, wo, sampler);
   if (depth + 1 >= max_depth_) return L;
   // Mirrors and glass, and glossy lobes in their specular limit: follow every branch,

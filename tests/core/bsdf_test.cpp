@@ -52,7 +52,7 @@ Vec3 spherical(double theta, double phi) {
   return Vec3(float(std::sin(theta) * std::cos(phi)), float(std::sin(theta) * std::sin(phi)), float(std::cos(theta)));
 }
 
-bool white_equal(const Material& a, const Material& b, const Vec3& wo, const Vec3& wi) {
+bool white_equal(const Bsdf& a, const Bsdf& b, const Vec3& wo, const Vec3& wi) {
   return std::abs(a.eval(wo, wi).x - b.eval(wo, wi).x) <= 1e-6f * std::abs(b.eval(wo, wi).x);
 }
 
@@ -158,7 +158,7 @@ struct BsdfReport {
   Color energy{0.0f};                      // quadrature of eval |cos wi|
 };
 
-BsdfReport check_bsdf(const Material& m, const Vec3& wo, uint64_t seed) {
+BsdfReport check_bsdf(const Bsdf& m, const Vec3& wo, uint64_t seed) {
   BsdfReport r;
   r.n = kSamples;
   glm::dvec3 sum(0.0), sum2(0.0);
@@ -424,7 +424,7 @@ TEST_CASE("BSDF reciprocity: eval(wo, wi) == eval(wi, wo) on the same side", "[c
   const Lambertian lam(Color(0.2f, 0.4f, 0.6f));
   const RoughDielectric glass_ggx(MicrofacetDistribution(MicrofacetType::GGX, 0.3f, 0.3f), 1.5f);
   const RoughDielectric glass_beck(MicrofacetDistribution(MicrofacetType::Beckmann, 0.1f, 0.4f), 1.5f);
-  const Material* materials[] = {&ggx, &beck, &phong, &lam, &glass_ggx, &glass_beck};
+  const Bsdf* materials[] = {&ggx, &beck, &phong, &lam, &glass_ggx, &glass_beck};
   const char* names[] = {"RoughConductor GGX", "RoughConductor Beckmann", "Phong", "Lambertian",
                          "RoughDielectric GGX (reflection)", "RoughDielectric Beckmann (reflection)"};
   Rng rng(600);

@@ -207,11 +207,3 @@ TEST_CASE("Conductor without an index (mirror) reflects about the normal with we
   CHECK_FALSE(mirror.sample(Vec3(0, 1, 0), Vec2(0.5f), 0.5f, s));
 }
 
-TEST_CASE("Material::emitted is the front side only", "[core][material]") {
-  Lambertian lamp(Color(0.5f));
-  CHECK_FALSE(lamp.is_emissive());
-  lamp.emission = Color(3, 2, 1);
-  CHECK(lamp.is_emissive());
-  CHECK(lamp.emitted(Vec3(0, 0.6f, 0.8f)) == Color(3, 2, 1));
-  CHECK(is_black(lamp.emitted(Vec3(0, 0.6f, -0.8f))));
-}

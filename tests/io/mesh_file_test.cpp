@@ -404,18 +404,16 @@ f 5 6 7
   CHECK(loaded.triangle_count == 3);
   CHECK(loaded.warnings.empty());
   REQUIRE(s.material_names.size() == 2);
-  auto material = [&](const std::string& name) -> const Material& {
+  auto material = [&](const std::string& name) -> const Bsdf& {
     for (size_t i = 0; i < s.material_names.size(); ++i) {
       if (s.material_names[i] == name) return *s.materials[i];
     }
     FAIL("no material " << name);
     return *s.materials[0];
   };
-  const Material& white = material("lit.obj#white");
-  const Material& lamp = material("lit.obj#lamp");
+  const Bsdf& white = material("lit.obj#white");
+  const Bsdf& lamp = material("lit.obj#lamp");
   CHECK(white.albedo() == Color(0.5f, 0.25f, 0.125f));
-  CHECK_FALSE(white.is_emissive());
-  CHECK(lamp.emission == Color(2, 3, 4));
   CHECK(lamp.albedo() == Color(0.0f));
   // One object per material, the lamp one area light.
   REQUIRE(s.objects.size() == 2);
@@ -426,7 +424,7 @@ f 5 6 7
   REQUIRE(s.lights.size() == 1);
   const auto* area = dynamic_cast<const AreaLight*>(s.lights[0].get());
   REQUIRE(area != nullptr);
-  CHECK(area->radiance() == Color(2, 3, 4));
+  CHECK(area->surface_radiance() == Color(2, 3, 4));
   CHECK(area->area() == Approx(0.5f));
   // A "material" on the object overrides the file's.
   const std::string given = dir.write("given.json", R"({"camera": {"position": [0, 0, 5], "look_at": [0, 0, 0]},

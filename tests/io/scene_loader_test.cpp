@@ -267,3 +267,26 @@ TEST_CASE("scene loader: number overflow is located at the number", "[core][regr
   const std::string text = "{\n  \"name\": \"1e999\",\n  \"radius\": 1e999\n}";
   REQUIRE_THROWS_WITH(parse(text), StartsWith("test.json:3:13: "));
 }
+
+TEST_CASE("scene loader: an emissive material's objects emit through their area light, front side only",
+          "[io][scene_loader]") {
+  // A quad in z = 0 facing -z (edge1 x edge2), lit from the camera's side.
+  LoadedScene loaded = parse_scene(
+      scene_text(R"([{"type": "quad", "origin": [-1, -1, 0], "edge1": [0, 1, 0], "edge2": [1, 0, 0], "material": "light"}])"),
+      "emit.json", ".");
+  const Scene& scene = *loaded.scene;
+  REQUIRE(scene.lights.size() == 1);
+  CHECK(scene.lights[0]->surface_radiance() == Color(1, 2, 3));
+  SurfaceHit hit;
+  REQUIRE(scene.intersect(Ray{Vec3(-0.5f, -0.5f, -3), Vec3(0, 0, 1)}, hit));
+  CHECK(hit.light == 0);
+  CHECK(scene.emitted(hit, hit.frame.to_local(Vec3(0, 0, -1))) == Color(1, 2, 3));
+  CHECK(is_black(scene.emitted(hit, hit.frame.to_local(Vec3(0, 0, 1)))));
+  // A non-emissive object's hits emit nothing.
+  LoadedScene plain = parse_scene(
+      scene_text(R"([{"type": "quad", "origin": [-1, -1, 0], "edge1": [0, 1, 0], "edge2": [1, 0, 0], "material": "white"}])"),
+      "plain.json", ".");
+  REQUIRE(plain.scene->intersect(Ray{Vec3(-0.5f, -0.5f, -3), Vec3(0, 0, 1)}, hit));
+  CHECK(hit.light == -1);
+  CHECK(is_black(plain.scene->emitted(hit, Vec3(0, 0, 1))));
+}

@@ -1,6 +1,7 @@
 // Smooth and rough conductors. The rough one is Cook-Torrance with Smith's height-correlated
 // masking-shadowing and sampling of the visible normals (Heitz 2014, 2018).
 #include "core/bsdf/conductor.h"
+#include "core/bsdf/bsdf_params.h"
 #include "core/bsdf/diffuse.h"
 #include "core/bsdf/fresnel.h"
 
@@ -58,6 +59,18 @@ bool RoughConductor::sample(const Vec3& wo_in, const Vec2& u, float, BsdfSample&
   s.delta = false;
   s.lobe = kBsdfGlossy | kBsdfReflection;
   return true;
+}
+
+std::unique_ptr<Bsdf> Conductor::create(const Params& p) {
+  return std::make_unique<Conductor>(read_conductor(p), p.texture("specular_reflectance", Color(1.0f)));
+}
+
+std::unique_ptr<Bsdf> Conductor::create_mirror(const Params& p) {
+  return std::make_unique<Conductor>(ConductorIor{}, p.texture("reflectance", Color(1.0f)));
+}
+
+std::unique_ptr<Bsdf> RoughConductor::create(const Params& p) {
+  return std::make_unique<RoughConductor>(read_distribution(p), read_conductor(p), p.texture("specular_reflectance", Color(1.0f)));
 }
 
 }  // namespace caustica

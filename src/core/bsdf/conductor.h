@@ -2,7 +2,9 @@
 // `roughconductor`, with Fresnel reflectance from a complex index of refraction per channel.
 #pragma once
 #include "core/bsdf/microfacet.h"
-#include "core/material.h"
+#include <memory>
+#include "core/bsdf/bsdf.h"
+#include "core/params.h"
 #include "core/textures/texture.h"
 
 namespace caustica {
@@ -15,8 +17,11 @@ struct ConductorIor {
   Color reflectance(float cos_i) const;
 };
 
-class Conductor final : public SpecularMaterial {
+class Conductor final : public SpecularBsdf {
  public:
+  static std::unique_ptr<Bsdf> create(const Params& p);
+  // Our `mirror`: a perfect mirror tinted by reflectance.
+  static std::unique_ptr<Bsdf> create_mirror(const Params& p);
   Conductor(const ConductorIor& ior, const ColorParam& specular_reflectance)
       : ior_(ior), specular_(specular_reflectance) {}
   int specular_lobes(const Vec3& wo, BsdfSample* out, const ShadingPoint& sp = {}) const override;
@@ -28,8 +33,9 @@ class Conductor final : public SpecularMaterial {
   ColorParam specular_;
 };
 
-class RoughConductor final : public Material {
+class RoughConductor final : public Bsdf {
  public:
+  static std::unique_ptr<Bsdf> create(const Params& p);
   RoughConductor(const MicrofacetDistribution& dist, const ConductorIor& ior, const ColorParam& specular_reflectance)
       : dist_(dist), ior_(ior), specular_(specular_reflectance) {}
   Color eval(const Vec3& wo, const Vec3& wi, const ShadingPoint& sp = {}) const override;

@@ -1,5 +1,6 @@
 // Smooth, thin and rough dielectrics.
 #include "core/bsdf/dielectric.h"
+#include "core/bsdf/bsdf_params.h"
 
 namespace caustica {
 namespace {
@@ -107,6 +108,29 @@ bool RoughDielectric::sample(const Vec3& wo, const Vec2& u, float u_lobe, BsdfSa
   s.weight = eval(wo, s.wi) * (std::abs(s.wi.z) / s.pdf);
   s.delta = false;
   return true;
+}
+
+std::unique_ptr<Bsdf> Dielectric::create(const Params& p) {
+  return std::make_unique<Dielectric>(read_eta(p, 1.5046f), FresnelModel::Exact);
+}
+
+std::unique_ptr<Bsdf> Dielectric::create_glass(const Params& p) {
+  const float ior = read_ior(p, "ior", 1.5f);
+  FresnelModel model = FresnelModel::Exact;
+  if (p.has("fresnel")) {
+    const std::string f = p.string("fresnel", "exact");
+    if (f == "schlick") model = FresnelModel::Schlick;
+    else if (f != "exact") p.fail("fresnel", "unknown Fresnel model \"" + f + "\" (known: exact, schlick)");
+  }
+  return std::make_unique<Dielectric>(ior, model);
+}
+
+std::unique_ptr<Bsdf> ThinDielectric::create(const Params& p) {
+  return std::make_unique<ThinDielectric>(read_eta(p, 1.5046f));
+}
+
+std::unique_ptr<Bsdf> RoughDielectric::create(const Params& p) {
+  return std::make_unique<RoughDielectric>(read_distribution(p), read_eta(p, 1.5046f));
 }
 
 }  // namespace caustica

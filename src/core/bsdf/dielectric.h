@@ -5,12 +5,17 @@
 #pragma once
 #include "core/bsdf/fresnel.h"
 #include "core/bsdf/microfacet.h"
-#include "core/material.h"
+#include <memory>
+#include "core/bsdf/bsdf.h"
+#include "core/params.h"
 
 namespace caustica {
 
-class Dielectric final : public SpecularMaterial {
+class Dielectric final : public SpecularBsdf {
  public:
+  static std::unique_ptr<Bsdf> create(const Params& p);
+  // Our `glass`: one index `ior` and a choice of Fresnel model (exact or schlick).
+  static std::unique_ptr<Bsdf> create_glass(const Params& p);
   Dielectric(float eta, FresnelModel model) : eta_(eta), model_(model) {}
   int specular_lobes(const Vec3& wo, BsdfSample* out, const ShadingPoint& sp = {}) const override;
   uint32_t flags() const override { return kBsdfSpecular | kBsdfReflection | kBsdfTransmission; }
@@ -26,8 +31,9 @@ class Dielectric final : public SpecularMaterial {
   FresnelModel model_;
 };
 
-class ThinDielectric final : public SpecularMaterial {
+class ThinDielectric final : public SpecularBsdf {
  public:
+  static std::unique_ptr<Bsdf> create(const Params& p);
   explicit ThinDielectric(float eta) : eta_(eta) {}
   int specular_lobes(const Vec3& wo, BsdfSample* out, const ShadingPoint& sp = {}) const override;
   uint32_t flags() const override { return kBsdfSpecular | kBsdfReflection | kBsdfTransmission; }
@@ -39,8 +45,9 @@ class ThinDielectric final : public SpecularMaterial {
   float eta_;
 };
 
-class RoughDielectric final : public Material {
+class RoughDielectric final : public Bsdf {
  public:
+  static std::unique_ptr<Bsdf> create(const Params& p);
   RoughDielectric(const MicrofacetDistribution& dist, float eta) : dist_(dist), eta_(eta) {}
   Color eval(const Vec3& wo, const Vec3& wi, const ShadingPoint& sp = {}) const override;
   float pdf(const Vec3& wo, const Vec3& wi, const ShadingPoint& sp = {}) const override;

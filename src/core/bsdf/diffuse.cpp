@@ -1,5 +1,6 @@
 // Lambertian reflection.
 #include "core/bsdf/diffuse.h"
+#include "core/bsdf/bsdf_params.h"
 #include "core/sampling.h"
 
 namespace caustica {
@@ -22,6 +23,14 @@ bool Lambertian::sample(const Vec3& wo, const Vec2& u, float, BsdfSample& s, con
   s.delta = false;
   s.lobe = kBsdfDiffuse | kBsdfReflection;
   return true;
+}
+
+std::unique_ptr<Bsdf> Lambertian::create(const Params& p) {
+  if (p.has("reflectance") && p.has("albedo")) p.fail("", "albedo is an alias of reflectance: give one");
+  const char* key = p.has("albedo") ? "albedo" : "reflectance";
+  const ColorParam rho = p.texture(key, Color(0.5f));
+  check_albedo(p, key, rho);
+  return std::make_unique<Lambertian>(rho);
 }
 
 }  // namespace caustica

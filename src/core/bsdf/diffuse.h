@@ -1,12 +1,16 @@
 // Lambertian reflection (Mitsuba's `diffuse`), two-sided.
 #pragma once
-#include "core/material.h"
+#include <memory>
+#include "core/bsdf/bsdf.h"
+#include "core/params.h"
 #include "core/textures/texture.h"
 
 namespace caustica {
 
-class Lambertian final : public Material {
+class Lambertian final : public Bsdf {
  public:
+  // Mitsuba's `diffuse`: reflectance (or its alias albedo), a colour or a texture.
+  static std::unique_ptr<Bsdf> create(const Params& p);
   explicit Lambertian(const ColorParam& albedo) : albedo_(albedo) {}
   Color eval(const Vec3& wo, const Vec3& wi, const ShadingPoint& sp = {}) const override;  // rho / pi on wo's side
   float pdf(const Vec3& wo, const Vec3& wi, const ShadingPoint& sp = {}) const override;

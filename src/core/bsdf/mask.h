@@ -3,14 +3,17 @@
 // alike, since Scene::intersect skips a masked hit with probability 1 - opacity; where a ray
 // stops, the nested BSDF scatters it.
 #pragma once
-#include "core/material.h"
+#include <memory>
+#include "core/bsdf/bsdf.h"
+#include "core/params.h"
 #include "core/textures/texture.h"
 
 namespace caustica {
 
-class Mask final : public Material {
+class Mask final : public Bsdf {
  public:
-  Mask(const Material* nested, const ColorParam& opacity) : nested_(nested), opacity_(opacity) {}
+  static std::unique_ptr<Bsdf> create(const Params& p);
+  Mask(const Bsdf* nested, const ColorParam& opacity) : nested_(nested), opacity_(opacity) {}
   Color eval(const Vec3& wo, const Vec3& wi, const ShadingPoint& sp = {}) const override { return nested_->eval(wo, wi, sp); }
   float pdf(const Vec3& wo, const Vec3& wi, const ShadingPoint& sp = {}) const override { return nested_->pdf(wo, wi, sp); }
   bool sample(const Vec3& wo, const Vec2& u, float u_lobe, BsdfSample& s, const ShadingPoint& sp = {}) const override {
@@ -28,7 +31,7 @@ class Mask final : public Material {
   }
 
  private:
-  const Material* nested_;  // owned by the scene
+  const Bsdf* nested_;  // owned by the scene
   ColorParam opacity_;
 };
 

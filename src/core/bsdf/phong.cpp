@@ -58,4 +58,13 @@ bool Phong::sample(const Vec3& wo_in, const Vec2& u, float u_lobe, BsdfSample& s
   return complete_sample(*this, wo, wi, kBsdfReflection | (glossy ? kBsdfGlossy : kBsdfDiffuse), below, sp, s);
 }
 
+std::unique_ptr<Bsdf> Phong::create(const Params& p) {
+  const ColorParam kd = p.texture("diffuse_reflectance", Color(0.5f));
+  const ColorParam ks = p.texture("specular_reflectance", Color(0.2f));
+  if (!kd.texture && !ks.texture && max_component(kd.value + ks.value) > 1.0f) {
+    p.warn("", "diffuse_reflectance + specular_reflectance above 1 creates energy");
+  }
+  return std::make_unique<Phong>(kd, ks, float(p.number_in("exponent", 30.0, 0.0, 1e6)));
+}
+
 }  // namespace caustica

@@ -1,13 +1,16 @@
 // The normalised modified Phong BRDF (Lafortune and Willems 1994; Mitsuba 0.6's `phong`):
 // f = kd / pi + ks (n + 2) / (2 pi) cos^n(alpha), alpha between wi and wo's mirror direction.
 #pragma once
-#include "core/material.h"
+#include <memory>
+#include "core/bsdf/bsdf.h"
+#include "core/params.h"
 #include "core/textures/texture.h"
 
 namespace caustica {
 
-class Phong final : public Material {
+class Phong final : public Bsdf {
  public:
+  static std::unique_ptr<Bsdf> create(const Params& p);
   Phong(const ColorParam& diffuse, const ColorParam& specular, float exponent);
   Color eval(const Vec3& wo, const Vec3& wi, const ShadingPoint& sp = {}) const override;
   float pdf(const Vec3& wo, const Vec3& wi, const ShadingPoint& sp = {}) const override;

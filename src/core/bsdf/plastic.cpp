@@ -1,5 +1,6 @@
 // Smooth and rough plastic.
 #include "core/bsdf/plastic.h"
+#include "core/bsdf/bsdf_params.h"
 #include "core/bsdf/diffuse.h"
 #include "core/bsdf/fresnel.h"
 #include "core/sampling.h"
@@ -150,5 +151,19 @@ Color Plastic::albedo(const ShadingPoint& sp) const {
   const float f = coat_reflectance(1.0f);
   return specular_.at(sp.uv) * f + diffuse_.at(sp.uv) * (1.0f - f);
 }
+
+namespace {
+std::unique_ptr<Bsdf> create_plastic(const Params& p, bool rough) {
+  const ColorParam kd = p.texture("diffuse_reflectance", Color(0.5f));
+  check_albedo(p, "diffuse_reflectance", kd);
+  const bool nonlinear = p.boolean("nonlinear", false);
+  std::optional<MicrofacetDistribution> dist;
+  if (rough) dist = read_distribution(p);
+  return std::make_unique<Plastic>(kd, p.texture("specular_reflectance", Color(1.0f)), read_eta(p, 1.49f), nonlinear, dist);
+}
+}  // namespace
+
+std::unique_ptr<Bsdf> Plastic::create(const Params& p) { return create_plastic(p, false); }
+std::unique_ptr<Bsdf> Plastic::create_rough(const Params& p) { return create_plastic(p, true); }
 
 }  // namespace caustica

@@ -11,13 +11,17 @@
 #include <optional>
 #include <vector>
 #include "core/bsdf/microfacet.h"
-#include "core/material.h"
+#include <memory>
+#include "core/bsdf/bsdf.h"
+#include "core/params.h"
 #include "core/textures/texture.h"
 
 namespace caustica {
 
-class Plastic final : public Material {
+class Plastic final : public Bsdf {
  public:
+  static std::unique_ptr<Bsdf> create(const Params& p);
+  static std::unique_ptr<Bsdf> create_rough(const Params& p);
   // dist: the rough coat's microfacet distribution; none for a smooth coat.
   Plastic(const ColorParam& diffuse, const ColorParam& specular, float eta, bool nonlinear,
           std::optional<MicrofacetDistribution> dist);

@@ -33,4 +33,9 @@ float TwoSided::glossy_roughness() const {
   return std::min(a, b);
 }
 
+std::unique_ptr<Bsdf> TwoSided::create(const Params& p) {
+  const std::vector<const Bsdf*> sides = p.bsdfs("bsdf", true);
+  return std::make_unique<TwoSided>(sides.front(), sides.back());
+}
+
 }  // namespace caustica

@@ -1,13 +1,17 @@
 // Mitsuba's `twosided`: one BSDF on both sides, or a front and a back BSDF. The back one sees
 // directions mirrored into its upper hemisphere.
 #pragma once
-#include "core/material.h"
+#include <memory>
+#include "core/bsdf/bsdf.h"
+#include "core/params.h"
 
 namespace caustica {
 
-class TwoSided final : public Material {
+class TwoSided final : public Bsdf {
  public:
-  TwoSided(const Material* front, const Material* back) : front_(front), back_(back) {}
+  // One BSDF on both sides, or two: front and back.
+  static std::unique_ptr<Bsdf> create(const Params& p);
+  TwoSided(const Bsdf* front, const Bsdf* back) : front_(front), back_(back) {}
   Color eval(const Vec3& wo, const Vec3& wi, const ShadingPoint& sp = {}) const override;
   float pdf(const Vec3& wo, const Vec3& wi, const ShadingPoint& sp = {}) const override;
   bool sample(const Vec3& wo, const Vec2& u, float u_lobe, BsdfSample& s, const ShadingPoint& sp = {}) const override;
@@ -17,8 +21,8 @@ class TwoSided final : public Material {
   Color albedo(const ShadingPoint& sp = {}) const override { return front_->albedo(sp); }
 
  private:
-  const Material* front_;  // owned by the scene
-  const Material* back_;
+  const Bsdf* front_;  // owned by the scene
+  const Bsdf* back_;
 };
 
 }  // namespace caustica

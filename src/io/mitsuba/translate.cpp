@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <map>
 #include <set>
+#include "core/bsdf/registry.h"
 #include "io/mitsuba/shapes.h"
 #include "io/mitsuba/spectrum.h"
 
@@ -19,8 +20,17 @@ namespace {
 constexpr int kRoundSegments = 256;
 constexpr int kUnlimitedDepth = 1024;
 
-const std::set<std::string> kBsdfs = {"diffuse",     "conductor", "roughconductor", "dielectric", "thindielectric",
-                                      "roughdielectric", "plastic", "roughplastic", "phong",      "twosided", "mask"};
+// The BSDFs that Mitsuba and we both know by one name, from the BSDF registry.
+const std::set<std::string>& mitsuba_bsdfs() {
+  static const std::set<std::string> names = [] {
+    std::set<std::string> s;
+    for (const BsdfPlugin& p : bsdf_plugins()) {
+      if (p.mitsuba) s.insert(p.name);
+    }
+    return s;
+  }();
+  return names;
+}
 const std::set<std::string> kShapes = {"obj",  "ply",    "serialized", "rectangle", "cube",
                                        "disk", "sphere", "cylinder",   "shapegroup", "instance"};
 const std::set<std::string> kEmitters = {"area", "point", "spot", "directional", "constant", "envmap"};
@@ -563,16 +573,16 @@ class Translator {
   json bsdf(const XmlObject& o, const std::string& p) {
     count_expansion(o);
     note(p, o.where);
-    if (!kBsdfs.count(o.type)) {
+    if (!mitsuba_bsdfs().count(o.type)) {
       const XmlObject* inner = nullptr;
       for (const XmlChild& c : o.children) {
         if (c.object->tag == "bsdf" && !inner) inner = c.object;
       }
       if (inner) {
-        unsupported(o, "BSDF", kBsdfs, "replaced by its first nested BSDF");
+        unsupported(o, "BSDF", mitsuba_bsdfs(), "replaced by its first nested BSDF");
         return bsdf(*inner, p);
       }
-      unsupported(o, "BSDF", kBsdfs, "replaced by a grey diffuse BSDF");
+      unsupported(o, "BSDF", mitsuba_bsdfs(), "replaced by a grey diffuse BSDF");
       return default_bsdf();
     }
     json j = {{"type", o.type}};

@@ -1,6 +1,7 @@
 // The BSDF interface: evaluated and sampled in the local shading frame (z = surface normal),
-// with lobe flags (diffuse, glossy, specular; reflection, transmission) as pbrt-v4's BxDFFlags,
-// plus the radiance a surface emits. The implementations live in core/bsdf/.
+// with lobe flags (diffuse, glossy, specular; reflection, transmission) as pbrt-v4's BxDFFlags.
+// One plugin per file pair in core/bsdf/, each listed once in core/bsdf/registry.cpp. What a
+// surface emits belongs to its area light, not to its BSDF.
 #pragma once
 #include <cstdint>
 #include <memory>
@@ -31,9 +32,9 @@ struct BsdfSample {
   uint32_t lobe = 0;  // the flags of the lobe that was sampled
 };
 
-class Material {
+class Bsdf {
  public:
-  virtual ~Material() = default;
+  virtual ~Bsdf() = default;
   // f(wo, wi) for local directions, non-delta lobes only. Every call takes the shading point
   // last (textures); untextured BSDFs ignore it, and tests may leave it out.
   virtual Color eval(const Vec3& wo, const Vec3& wi, const ShadingPoint& sp = {}) const = 0;
@@ -61,39 +62,24 @@ class Material {
   bool is_specular() const { return (flags() & (kBsdfDiffuse | kBsdfGlossy)) == 0; }
   // A single diffuse reflection lobe: f = albedo / pi everywhere.
   bool is_lambertian() const { return flags() == (kBsdfDiffuse | kBsdfReflection); }
-
-  Color emission{0.0f};  // radiance leaving the front side (along the normal)
-  bool is_emissive() const { return !is_black(emission); }
-  // Radiance emitted towards local direction wo.
-  Color emitted(const Vec3& wo_local) const { return wo_local.z > 0 ? emission : Color(0.0f); }
 };
 
 // Completes a sample of a non-delta lobe once its direction wi (upper hemisphere, wo's side
 // mirrored up) is chosen: the density and weight come from the BSDF's own pdf() and eval(), so
 // mixtures of lobes stay consistent; `lobe` is recorded, and the direction mirrored back down
 // when wo was `below`. False when wi is below or has no density.
-bool complete_sample(const Material& m, const Vec3& wo, const Vec3& wi, uint32_t lobe, bool below,
+bool complete_sample(const Bsdf& m, const Vec3& wo, const Vec3& wi, uint32_t lobe, bool below,
                      const ShadingPoint& sp, BsdfSample& s);
 
 // A BSDF with delta lobes only (mirrors, smooth glass): nothing to evaluate; sample() picks
 // one of specular_lobes() in proportion to its weight (at most two, whose weights sum to 1 or
 // less), and the sample carries the rest of the weight.
-class SpecularMaterial : public Material {
+class SpecularBsdf : public Bsdf {
  public:
   Color eval(const Vec3&, const Vec3&, const ShadingPoint& = {}) const final { return Color(0.0f); }
   float pdf(const Vec3&, const Vec3&, const ShadingPoint& = {}) const final { return 0.0f; }
   bool sample(const Vec3& wo, const Vec2& u, float u_lobe, BsdfSample& s, const ShadingPoint& sp = {}) const final;
 };
-
-// Photon mapping's rule for where photons are stored and where the eye path stops to gather:
-// a diffuse lobe, or a glossy reflection lobe at least `glossy_threshold` rough (microfacet
-// alpha). Glossy transmission (rough glass) is always traced through: a density estimate only
-// sees photons on the viewer's side and would miss the light coming through.
-inline bool is_gather_surface(const Material& m, float glossy_threshold) {
-  const uint32_t f = m.flags();
-  if ((f & kBsdfDiffuse) != 0) return true;
-  return (f & kBsdfGlossy) != 0 && (f & kBsdfTransmission) == 0 && m.glossy_roughness() >= glossy_threshold;
-}
 
 inline Vec3 reflect_local(const Vec3& wo) { return Vec3(-wo.x, -wo.y, wo.z); }
 // Mirror reflection of wo about the unit vector m.

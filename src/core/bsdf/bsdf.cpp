@@ -1,9 +1,9 @@
 // The shared part of the BSDF interface.
-#include "core/material.h"
+#include "core/bsdf/bsdf.h"
 
 namespace caustica {
 
-bool SpecularMaterial::sample(const Vec3& wo, const Vec2&, float u_lobe, BsdfSample& s, const ShadingPoint& sp) const {
+bool SpecularBsdf::sample(const Vec3& wo, const Vec2&, float u_lobe, BsdfSample& s, const ShadingPoint& sp) const {
   BsdfSample lobes[2];
   const int n = specular_lobes(wo, lobes, sp);
   if (n == 0) return false;
@@ -23,7 +23,7 @@ bool SpecularMaterial::sample(const Vec3& wo, const Vec2&, float u_lobe, BsdfSam
   return true;
 }
 
-bool complete_sample(const Material& m, const Vec3& wo, const Vec3& wi, uint32_t lobe, bool below,
+bool complete_sample(const Bsdf& m, const Vec3& wo, const Vec3& wi, uint32_t lobe, bool below,
                      const ShadingPoint& sp, BsdfSample& s) {
   if (wi.z <= 0.0f) return false;
   s.pdf = m.pdf(wo, wi, sp);

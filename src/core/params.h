@@ -1,0 +1,36 @@
+// A plugin's block of parameters as a scene reader hands it over. Each plugin reads its own
+// values through it in its create() (pbrt-v4's ParameterDictionary, Mitsuba 3's Properties);
+// the reader behind it (src/io) knows the file format, names the file and the place in every
+// error, and has refused keys that the plugin's registry row does not list before create() runs.
+#pragma once
+#include <string>
+#include <vector>
+#include "core/math.h"
+#include "core/textures/texture.h"
+
+namespace caustica {
+
+class Bsdf;
+
+class Params {
+ public:
+  virtual ~Params() = default;
+  virtual bool has(const std::string& key) const = 0;
+  virtual bool is_string(const std::string& key) const = 0;
+  // Each getter with a fallback returns it when the key is absent.
+  virtual double number(const std::string& key, double fallback) const = 0;  // finite, fits a float
+  virtual double number_in(const std::string& key, double fallback, double lo, double hi) const = 0;
+  virtual bool boolean(const std::string& key, bool fallback) const = 0;
+  virtual std::string string(const std::string& key, const std::string& fallback) const = 0;
+  virtual Color color(const std::string& key, const Color& fallback) const = 0;  // non-negative
+  // A colour or a texture block (the texture is kept alive by the scene).
+  virtual ColorParam texture(const std::string& key, const Color& fallback) const = 0;
+  // Nested BSDF blocks (kept alive by the scene): one, or with `allow_pair` an array of one or
+  // two (front and back). The key is required.
+  virtual std::vector<const Bsdf*> bsdfs(const std::string& key, bool allow_pair) const = 0;
+  // An error at `key` (empty: the block itself), naming the file and the place in it.
+  [[noreturn]] virtual void fail(const std::string& key, const std::string& message) const = 0;
+  virtual void warn(const std::string& key, const std::string& message) const = 0;
+};
+
+}  // namespace caustica

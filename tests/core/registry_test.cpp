@@ -1,0 +1,57 @@
+// The plugin registries: every registered plugin is documented, and whatever lists a family
+// (error messages, the Mitsuba translator) lists exactly the registry's rows.
+#include <catch2/catch.hpp>
+#include "core/bsdf/registry.h"
+#include "io/scene_loader.h"
+#include "support/errors.h"
+#include "support/temp_dir.h"
+
+using namespace caustica;
+
+namespace {
+std::string doc(const std::string& name) { return test::read_text(std::string(CAUSTICA_SOURCE_DIR) + "/docs/" + name); }
+
+const char* kScene = R"({"camera": {"position": [0, 0, -5], "look_at": [0, 0, 0]},
+  "materials": {"m": %s}, "objects": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "m"}]})";
+
+std::string scene_with(const std::string& material) {
+  std::string s = kScene;
+  s.replace(s.find("%s"), 2, material);
+  return s;
+}
+}  // namespace
+
+TEST_CASE("registries: the docs name every registered BSDF", "[core][registry]") {
+  const std::string format = doc("scene-format.md"), mitsuba = doc("mitsuba.md");
+  REQUIRE(bsdf_plugins().size() >= 13);
+  for (const BsdfPlugin& p : bsdf_plugins()) {
+    INFO(p.name);
+    CHECK(format.find("`\"" + std::string(p.name) + "\"`") != std::string::npos);
+    if (p.mitsuba) CHECK(mitsuba.find("`" + std::string(p.name) + "`") != std::string::npos);
+  }
+}
+
+TEST_CASE("registries: the BSDF table drives the JSON reader's errors and the Mitsuba translator", "[core][registry]") {
+  const std::string error = test::error_of([] { parse_scene(scene_with(R"({"type": "velvet"})"), "s.json", "."); });
+  REQUIRE_FALSE(error.empty());
+  for (const BsdfPlugin& p : bsdf_plugins()) {
+    INFO(p.name);
+    CHECK(error.find(std::string(p.name)) != std::string::npos);
+    // Each plugin reads with its defaults alone, except those whose nested BSDF is required.
+    const bool needs_bsdf = std::find(p.keys.begin(), p.keys.end(), std::string("bsdf")) != p.keys.end();
+    if (!needs_bsdf) CHECK_NOTHROW(parse_scene(scene_with(R"({"type": ")" + std::string(p.name) + R"("})"), "s.json", "."));
+    // A key outside the row is refused, naming the place.
+    CHECK(test::error_of([&] { parse_scene(scene_with(R"({"type": ")" + std::string(p.name) + R"(", "colour": 1})"), "s.json", "."); })
+              .find("/materials/m/colour: unknown key") != std::string::npos);
+  }
+  // Mitsuba's BSDFs are the rows it knows by name; our aliases are not Mitsuba plugins.
+  const std::string sensor = R"(<sensor type="perspective"><film type="hdrfilm"><integer name="width" value="4"/><integer name="height" value="4"/></film></sensor>)";
+  for (const BsdfPlugin& p : bsdf_plugins()) {
+    INFO(p.name);
+    const std::string xml = R"(<scene version="3.0.0">)" + sensor + R"(<shape type="sphere"><bsdf type=")" + p.name +
+                            R"("/></shape><emitter type="constant"/></scene>)";
+    const std::string e = test::error_of([&] { parse_scene(xml, "s.xml", "."); });
+    if (p.mitsuba) CHECK(e.find("unsupported") == std::string::npos);
+    else CHECK(e.find("unsupported") != std::string::npos);
+  }
+}
