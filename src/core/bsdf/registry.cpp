@@ -4,6 +4,7 @@
 #include "core/bsdf/dielectric.h"
 #include "core/bsdf/diffuse.h"
 #include "core/bsdf/mask.h"
+#include "core/bsdf/null.h"
 #include "core/bsdf/phong.h"
 #include "core/bsdf/plastic.h"
 #include "core/bsdf/twosided.h"
@@ -26,9 +27,10 @@ const std::vector<BsdfPlugin>& bsdf_plugins() {
        {"diffuse_reflectance", "specular_reflectance", "int_ior", "ext_ior", "nonlinear", "distribution", "alpha"}},
       {"phong", true, true, Phong::create, {"diffuse_reflectance", "specular_reflectance", "exponent"}},
       {"twosided", true, true, TwoSided::create, {"bsdf"}},
-      // No emission on a mask: light sampling would see an opaque light
+      // No emission on a mask or a null surface: light sampling would see an opaque light
       // that rays pass through.
       {"mask", true, false, Mask::create, {"bsdf", "opacity"}},
+      {"null", true, false, NullBsdf::create, {}},
       {"mirror", false, true, Conductor::create_mirror, {"reflectance"}},
       {"glass", false, true, Dielectric::create_glass, {"ior", "fresnel"}},
   };
