@@ -25,6 +25,11 @@ class Params {
   virtual Color color(const std::string& key, const Color& fallback) const = 0;  // non-negative
   // A colour or a texture block (the texture is kept alive by the scene).
   virtual ColorParam texture(const std::string& key, const Color& fallback) const = 0;
+  // A file named by `key` (required), relative to the scene's folder; an error when it is not
+  // there or not a regular file (`what` names it: "texture file").
+  virtual std::string file(const std::string& key, const std::string& what) const = 0;
+  // Texture coordinates' transform (identity when absent).
+  virtual UvTransform uv_transform(const std::string& key) const = 0;
   // Nested BSDF blocks (kept alive by the scene): one, or with `allow_pair` an array of one or
   // two (front and back). The key is required.
   virtual std::vector<const Bsdf*> bsdfs(const std::string& key, bool allow_pair) const = 0;

@@ -169,7 +169,7 @@ struct Loader {
   // Reads a material block and adds it (and the materials nested in it) under `name`.
   uint32_t add_material(const std::string& name, const json& m, const std::string& p) {
     std::vector<std::unique_ptr<Bsdf>> nested;
-    const MaterialContext ctx{r, base_dir, nested, scene().textures, out.warnings};
+    const PluginContext ctx{r, base_dir, nested, scene().textures, out.warnings};
     std::unique_ptr<Bsdf> mat = read_bsdf(ctx, m, p);
     for (auto& n : nested) {
       scene().materials.push_back(std::move(n));

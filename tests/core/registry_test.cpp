@@ -2,6 +2,7 @@
 // (error messages, the Mitsuba translator) lists exactly the registry's rows.
 #include <catch2/catch.hpp>
 #include "core/bsdf/registry.h"
+#include "core/textures/registry.h"
 #include "io/scene_loader.h"
 #include "support/errors.h"
 #include "support/temp_dir.h"
@@ -21,14 +22,22 @@ std::string scene_with(const std::string& material) {
 }
 }  // namespace
 
-TEST_CASE("registries: the docs name every registered BSDF", "[core][registry]") {
+// Every row is in scene-format.md as `"name"`, and Mitsuba's rows in mitsuba.md as `name`.
+template <class Plugin>
+void check_documented(const std::vector<Plugin>& table) {
   const std::string format = doc("scene-format.md"), mitsuba = doc("mitsuba.md");
-  REQUIRE(bsdf_plugins().size() >= 13);
-  for (const BsdfPlugin& p : bsdf_plugins()) {
+  for (const Plugin& p : table) {
     INFO(p.name);
     CHECK(format.find("`\"" + std::string(p.name) + "\"`") != std::string::npos);
     if (p.mitsuba) CHECK(mitsuba.find("`" + std::string(p.name) + "`") != std::string::npos);
   }
+}
+
+TEST_CASE("registries: the docs name every registered plugin", "[core][registry]") {
+  REQUIRE(bsdf_plugins().size() >= 14);
+  check_documented(bsdf_plugins());
+  REQUIRE(texture_plugins().size() >= 2);
+  check_documented(texture_plugins());
 }
 
 TEST_CASE("registries: the BSDF table drives the JSON reader's errors and the Mitsuba translator", "[core][registry]") {

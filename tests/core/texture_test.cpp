@@ -5,6 +5,7 @@
 #include "io/image_io.h"
 #include "io/scene_loader.h"
 #include "core/textures/bitmap.h"
+#include "core/textures/checkerboard.h"
 #include "support/temp_dir.h"
 
 using namespace caustica;

@@ -16,7 +16,7 @@ std::unique_ptr<Bsdf> read(const std::string& text, std::vector<std::string>* wa
   std::vector<std::unique_ptr<Bsdf>> nested;
   std::vector<std::string> warnings;
   static std::vector<std::unique_ptr<Texture>> textures;
-  const MaterialContext ctx{r, ".", nested, textures, warnings};
+  const PluginContext ctx{r, ".", nested, textures, warnings};
   auto m = read_bsdf(ctx, nlohmann::json::parse(text), "/materials/x");
   if (warnings_out) *warnings_out = warnings;
   static std::vector<std::unique_ptr<Bsdf>> keep;  // nested materials outlive the call

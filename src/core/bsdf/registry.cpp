@@ -8,6 +8,7 @@
 #include "core/bsdf/phong.h"
 #include "core/bsdf/plastic.h"
 #include "core/bsdf/twosided.h"
+#include "core/registry.h"
 
 namespace caustica {
 
@@ -37,17 +38,8 @@ const std::vector<BsdfPlugin>& bsdf_plugins() {
   return table;
 }
 
-const BsdfPlugin* find_bsdf_plugin(const std::string& name) {
-  for (const BsdfPlugin& p : bsdf_plugins()) {
-    if (name == p.name) return &p;
-  }
-  return nullptr;
-}
+const BsdfPlugin* find_bsdf_plugin(const std::string& name) { return find_plugin(bsdf_plugins(), name); }
 
-std::string known_bsdfs() {
-  std::string out;
-  for (const BsdfPlugin& p : bsdf_plugins()) out += (out.empty() ? "" : ", ") + std::string(p.name);
-  return out;
-}
+std::string known_bsdfs() { return plugin_names(bsdf_plugins()); }
 
 }  // namespace caustica

@@ -62,4 +62,25 @@ Color BitmapTexture::eval(const Vec2& uv_in) const {
   return c;
 }
 
+std::unique_ptr<Texture> BitmapTexture::create(const Params& p) {
+  const std::string path = p.file("filename", "texture file");
+  TextureFilter filter = TextureFilter::Bilinear;
+  const std::string f = p.string("filter_type", "bilinear");
+  if (f == "nearest") filter = TextureFilter::Nearest;
+  else if (f != "bilinear") p.fail("filter_type", "unknown filter_type \"" + f + "\" (known: bilinear, nearest)");
+  TextureWrap wrap = TextureWrap::Repeat;
+  const std::string w = p.string("wrap_mode", "repeat");
+  if (w == "mirror") wrap = TextureWrap::Mirror;
+  else if (w == "clamp") wrap = TextureWrap::Clamp;
+  else if (w != "repeat") p.fail("wrap_mode", "unknown wrap_mode \"" + w + "\" (known: repeat, mirror, clamp)");
+  const bool raw = p.boolean("raw", false);
+  const UvTransform to_uv = p.uv_transform("to_uv");
+  try {
+    return std::make_unique<BitmapTexture>(path, filter, wrap, to_uv, raw);
+  } catch (const InputError& e) {
+    p.fail("filename", e.what());
+  }
+  return nullptr;  // not reached: fail() throws
+}
+
 }  // namespace caustica

@@ -1,7 +1,9 @@
 // Mitsuba's `bitmap` texture: an image file read and filtered through OpenImageIO's
 // TextureSystem (tiled, cached, MIP-mapped on demand), shared by every bitmap of a process.
 #pragma once
+#include <memory>
 #include <string>
+#include "core/params.h"
 #include "core/textures/texture.h"
 
 namespace caustica {
@@ -14,6 +16,8 @@ class BitmapTexture final : public Texture {
   // Throws InputError when OpenImageIO cannot open the file. `raw`: the pixels are linear
   // data; otherwise 8-bit images are sRGB-decoded (Mitsuba's default for colour textures).
   BitmapTexture(const std::string& path, TextureFilter filter, TextureWrap wrap, const UvTransform& to_uv, bool raw);
+  // filename, filter_type (bilinear, nearest), wrap_mode (repeat, mirror, clamp), raw, to_uv.
+  static std::unique_ptr<Texture> create(const Params& p);
   Color eval(const Vec2& uv) const override;
   int width() const { return width_; }
   int height() const { return height_; }

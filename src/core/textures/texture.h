@@ -1,5 +1,6 @@
 // Textures: colours that vary over a surface's (u, v), with Mitsuba 3's conventions: (0, 0) is
-// the image's top-left corner, `to_uv` transforms the coordinates before the lookup.
+// the image's top-left corner, `to_uv` transforms the coordinates before the lookup. One
+// plugin per file pair in core/textures/, each listed once in core/textures/registry.cpp.
 #pragma once
 #include "core/math.h"
 
@@ -15,17 +16,6 @@ class Texture {
  public:
   virtual ~Texture() = default;
   virtual Color eval(const Vec2& uv) const = 0;
-};
-
-// Mitsuba's `checkerboard`: color0 where (u mod 1 > 1/2) == (v mod 1 > 1/2), color1 elsewhere.
-class CheckerboardTexture final : public Texture {
- public:
-  CheckerboardTexture(const Color& c0, const Color& c1, const UvTransform& to_uv) : c0_(c0), c1_(c1), to_uv_(to_uv) {}
-  Color eval(const Vec2& uv) const override;
-
- private:
-  Color c0_, c1_;
-  UvTransform to_uv_;
 };
 
 // A colour parameter of a BSDF: a constant, or a texture owned by the scene.

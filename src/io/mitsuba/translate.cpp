@@ -8,6 +8,7 @@
 #include <map>
 #include <set>
 #include "core/bsdf/registry.h"
+#include "core/textures/registry.h"
 #include "io/mitsuba/shapes.h"
 #include "io/mitsuba/spectrum.h"
 
@@ -20,21 +21,26 @@ namespace {
 constexpr int kRoundSegments = 256;
 constexpr int kUnlimitedDepth = 1024;
 
-// The BSDFs that Mitsuba and we both know by one name, from the BSDF registry.
+// The plugins of a family that Mitsuba and we both know by one name, from its registry.
+template <class Plugin>
+std::set<std::string> mitsuba_names(const std::vector<Plugin>& table) {
+  std::set<std::string> s;
+  for (const Plugin& p : table) {
+    if (p.mitsuba) s.insert(p.name);
+  }
+  return s;
+}
 const std::set<std::string>& mitsuba_bsdfs() {
-  static const std::set<std::string> names = [] {
-    std::set<std::string> s;
-    for (const BsdfPlugin& p : bsdf_plugins()) {
-      if (p.mitsuba) s.insert(p.name);
-    }
-    return s;
-  }();
+  static const std::set<std::string> names = mitsuba_names(bsdf_plugins());
+  return names;
+}
+const std::set<std::string>& mitsuba_textures() {
+  static const std::set<std::string> names = mitsuba_names(texture_plugins());
   return names;
 }
 const std::set<std::string> kShapes = {"obj",  "ply",    "serialized", "rectangle", "cube",
                                        "disk", "sphere", "cylinder",   "shapegroup", "instance"};
 const std::set<std::string> kEmitters = {"area", "point", "spot", "directional", "constant", "envmap"};
-const std::set<std::string> kTextures = {"bitmap", "checkerboard"};
 const std::set<std::string> kIntegrators = {"path", "volpath", "volpathmis", "direct", "photonmapper",
                                             "sppm", "ppm",  "moment",  "aov"};
 
@@ -642,8 +648,8 @@ class Translator {
   json texture(const XmlObject& o, const std::string& p) {
     count_expansion(o);
     note(p, o.where);
-    if (!kTextures.count(o.type)) {
-      unsupported(o, "texture", kTextures, "replaced by a constant 0.5");
+    if (!mitsuba_textures().count(o.type)) {
+      unsupported(o, "texture", mitsuba_textures(), "replaced by a constant 0.5");
       return 0.5;
     }
     json j = {{"type", o.type}};

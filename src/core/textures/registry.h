@@ -1,0 +1,22 @@
+// The texture family's one table: name, whether Mitsuba knows it by that name, create, keys.
+#pragma once
+#include <memory>
+#include <string>
+#include <vector>
+#include "core/params.h"
+#include "core/textures/texture.h"
+
+namespace caustica {
+
+struct TexturePlugin {
+  const char* name;
+  bool mitsuba;
+  std::unique_ptr<Texture> (*create)(const Params&);
+  std::vector<const char*> keys;  // every key besides "type"
+};
+
+const std::vector<TexturePlugin>& texture_plugins();
+const TexturePlugin* find_texture_plugin(const std::string& name);
+std::string known_textures();
+
+}  // namespace caustica

@@ -1,0 +1,116 @@
+// A plugin's JSON block as core's Params.
+#include "io/json_params.h"
+#include <filesystem>
+#include "io/bsdf_reader.h"
+#include "io/texture_reader.h"
+
+namespace caustica {
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+// to_uv: {"scale": s or [su, sv], "rotate": degrees, "translate": [tu, tv]}, applied in that order,
+// or a 2D affine matrix [[a, b, tu], [c, d, tv]] (u' = a u + b v + tu, v' = c u + d v + tv).
+UvTransform read_to_uv(const JsonReader& r, const json& j, const std::string& p) {
+  if (j.is_array()) {
+    if (j.size() != 2) r.fail(p, "expected {\"scale\", \"rotate\", \"translate\"} or 2 rows [[a, b, tu], [c, d, tv]]");
+    float m[2][3];
+    for (size_t row = 0; row < 2; ++row) {
+      if (!j[row].is_array() || j[row].size() != 3) r.fail(child(p, row), "expected a row of 3 numbers");
+      for (size_t col = 0; col < 3; ++col) m[row][col] = float(r.number(j[row][col], child(child(p, row), col)));
+    }
+    return UvTransform{m[0][0], m[0][1], m[1][0], m[1][1], m[0][2], m[1][2]};
+  }
+  r.check_object(j, p, {"scale", "rotate", "translate"});
+  Vec2 scale(1.0f), translate(0.0f);
+  if (j.contains("scale")) {
+    const std::string sp = child(p, "scale");
+    if (j["scale"].is_number()) {
+      scale = Vec2(float(r.number(j["scale"], sp)));
+    } else {
+      scale = r.vec2(j["scale"], sp, "a number or [su, sv]");
+    }
+  }
+  if (j.contains("translate")) translate = r.vec2(j["translate"], child(p, "translate"), "[tu, tv]");
+  const float a = j.contains("rotate") ? float(r.number(j["rotate"], child(p, "rotate"))) * kPi / 180.0f : 0.0f;
+  const float c = std::cos(a), s = std::sin(a);
+  UvTransform t;
+  t.m00 = c * scale.x;
+  t.m01 = -s * scale.y;
+  t.m10 = s * scale.x;
+  t.m11 = c * scale.y;
+  t.tx = translate.x;
+  t.ty = translate.y;
+  return t;
+}
+}  // namespace
+
+double JsonParams::number(const std::string& key, double fallback) const {
+  return has(key) ? r_.number(m_[key], at(key)) : fallback;
+}
+
+double JsonParams::number_in(const std::string& key, double fallback, double lo, double hi) const {
+  return has(key) ? r_.number_in(m_[key], at(key), lo, hi) : fallback;
+}
+
+bool JsonParams::boolean(const std::string& key, bool fallback) const {
+  return has(key) ? r_.boolean(m_[key], at(key)) : fallback;
+}
+
+std::string JsonParams::string(const std::string& key, const std::string& fallback) const {
+  return has(key) ? r_.string(m_[key], at(key)) : fallback;
+}
+
+Color JsonParams::color(const std::string& key, const Color& fallback) const {
+  return has(key) ? r_.color(m_[key], at(key)) : fallback;
+}
+
+ColorParam JsonParams::texture(const std::string& key, const Color& fallback) const {
+  if (!has(key)) return fallback;
+  if (!m_[key].is_object()) return r_.color(m_[key], at(key));
+  ctx_.textures.push_back(read_texture(ctx_, m_[key], at(key)));
+  return ColorParam(ctx_.textures.back().get());
+}
+
+std::string JsonParams::file(const std::string& key, const std::string& what) const {
+  const std::string name = r_.string(r_.require(m_, p_, key.c_str()), at(key));
+  const fs::path path = fs::path(name).is_absolute() ? fs::path(name) : fs::path(ctx_.base_dir) / name;
+  std::error_code ec;
+  if (!fs::exists(path, ec)) r_.fail(at(key), what + " not found: tried " + path.string());
+  if (!fs::is_regular_file(path, ec)) r_.fail(at(key), what + " is not a regular file: " + path.string());
+  return path.string();
+}
+
+UvTransform JsonParams::uv_transform(const std::string& key) const {
+  return has(key) ? read_to_uv(r_, m_[key], at(key)) : UvTransform{};
+}
+
+std::vector<const Bsdf*> JsonParams::bsdfs(const std::string& key, bool allow_pair) const {
+  const json& inner = r_.require(m_, p_, key.c_str());
+  const std::string ip = at(key);
+  std::vector<json const*> blocks;
+  std::vector<std::string> pointers;
+  if (allow_pair && inner.is_array()) {
+    if (inner.size() != 1 && inner.size() != 2) r_.fail(ip, "expected one BSDF, or two (front and back)");
+    for (size_t i = 0; i < inner.size(); ++i) blocks.push_back(&inner[i]), pointers.push_back(child(ip, i));
+  } else {
+    blocks.push_back(&inner), pointers.push_back(ip);
+  }
+  std::vector<const Bsdf*> out;
+  for (size_t i = 0; i < blocks.size(); ++i) {
+    std::unique_ptr<Bsdf> b = read_bsdf(ctx_, *blocks[i], pointers[i], true);
+    ctx_.nested.push_back(std::move(b));
+    out.push_back(ctx_.nested.back().get());
+  }
+  return out;
+}
+
+void JsonParams::fail(const std::string& key, const std::string& message) const {
+  r_.fail(key.empty() ? p_ : at(key), message);
+}
+
+void JsonParams::warn(const std::string& key, const std::string& message) const {
+  r_.warn(key.empty() ? p_ : at(key), message, ctx_.warnings);
+}
+
+}  // namespace caustica
