@@ -5,6 +5,7 @@
 #pragma once
 #include <string>
 #include <vector>
+#include "core/image.h"
 #include "core/math.h"
 #include "core/textures/texture.h"
 
@@ -23,11 +24,17 @@ class Params {
   virtual bool boolean(const std::string& key, bool fallback) const = 0;
   virtual std::string string(const std::string& key, const std::string& fallback) const = 0;
   virtual Color color(const std::string& key, const Color& fallback) const = 0;  // non-negative
+  virtual Color color(const std::string& key) const = 0;                         // required
+  virtual Vec3 vec3(const std::string& key) const = 0;                           // required
   // A colour or a texture block (the texture is kept alive by the scene).
   virtual ColorParam texture(const std::string& key, const Color& fallback) const = 0;
   // A file named by `key` (required), relative to the scene's folder; an error when it is not
   // there or not a regular file (`what` names it: "texture file").
   virtual std::string file(const std::string& key, const std::string& what) const = 0;
+  // An image file named by `key` (required; `what` names it in errors: "environment map").
+  virtual Image image(const std::string& key, const std::string& what) const = 0;
+  // A rotation (3x3, or the rotation part of a 4x4; identity when absent).
+  virtual glm::mat3 rotation(const std::string& key) const = 0;
   // Texture coordinates' transform (identity when absent).
   virtual UvTransform uv_transform(const std::string& key) const = 0;
   // Nested BSDF blocks (kept alive by the scene): one, or with `allow_pair` an array of one or

@@ -5,7 +5,7 @@
 #include <vector>
 #include "core/bvh.h"
 #include "core/camera.h"
-#include "core/light.h"
+#include "core/lights/light.h"
 #include "core/pixel_filter.h"
 #include "core/bsdf/bsdf.h"
 #include "core/textures/texture.h"

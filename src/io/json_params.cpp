@@ -2,6 +2,7 @@
 #include "io/json_params.h"
 #include <filesystem>
 #include "io/bsdf_reader.h"
+#include "io/image_io.h"
 #include "io/texture_reader.h"
 
 namespace caustica {
@@ -43,6 +44,24 @@ UvTransform read_to_uv(const JsonReader& r, const json& j, const std::string& p)
   t.ty = translate.y;
   return t;
 }
+
+// A rotation given as a 3x3 or 4x4 row-major matrix (the translation of a 4x4 is ignored).
+glm::mat3 read_rotation(const JsonReader& r, const json& m, const std::string& p) {
+  if (!m.is_array() || (m.size() != 3 && m.size() != 4)) r.fail(p, "expected a 3x3 or 4x4 matrix (an array of rows)");
+  glm::mat3 out(1.0f);
+  for (size_t row = 0; row < 3; ++row) {
+    const json& rw = m[row];
+    if (!rw.is_array() || rw.size() != m.size()) r.fail(child(p, row), "expected a row of " + std::to_string(m.size()) + " numbers");
+    for (size_t col = 0; col < 3; ++col) out[int(col)][int(row)] = float(r.number(rw[col], child(child(p, row), col)));
+  }
+  const glm::mat3 check = glm::transpose(out) * out;
+  for (int a = 0; a < 3; ++a) {
+    for (int b = 0; b < 3; ++b) {
+      if (std::abs(check[a][b] - (a == b ? 1.0f : 0.0f)) > 1e-3f) r.fail(p, "to_world must be a rotation (orthonormal)");
+    }
+  }
+  return out;
+}
 }  // namespace
 
 double JsonParams::number(const std::string& key, double fallback) const {
@@ -63,6 +82,23 @@ std::string JsonParams::string(const std::string& key, const std::string& fallba
 
 Color JsonParams::color(const std::string& key, const Color& fallback) const {
   return has(key) ? r_.color(m_[key], at(key)) : fallback;
+}
+
+Color JsonParams::color(const std::string& key) const { return r_.color(r_.require(m_, p_, key.c_str()), at(key)); }
+
+Vec3 JsonParams::vec3(const std::string& key) const { return r_.vec3(r_.require(m_, p_, key.c_str()), at(key)); }
+
+Image JsonParams::image(const std::string& key, const std::string& what) const {
+  const std::string path = file(key, what);
+  try {
+    return read_image(path);
+  } catch (const std::exception& e) {
+    r_.fail(at(key), "cannot read the " + what + ": " + e.what());
+  }
+}
+
+glm::mat3 JsonParams::rotation(const std::string& key) const {
+  return has(key) ? read_rotation(r_, m_[key], at(key)) : glm::mat3(1.0f);
 }
 
 ColorParam JsonParams::texture(const std::string& key, const Color& fallback) const {

@@ -33,6 +33,10 @@ class JsonParams final : public Params {
   bool boolean(const std::string& key, bool fallback) const override;
   std::string string(const std::string& key, const std::string& fallback) const override;
   Color color(const std::string& key, const Color& fallback) const override;
+  Color color(const std::string& key) const override;
+  Vec3 vec3(const std::string& key) const override;
+  Image image(const std::string& key, const std::string& what) const override;
+  glm::mat3 rotation(const std::string& key) const override;
   ColorParam texture(const std::string& key, const Color& fallback) const override;
   std::string file(const std::string& key, const std::string& what) const override;
   UvTransform uv_transform(const std::string& key) const override;

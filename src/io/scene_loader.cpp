@@ -7,9 +7,8 @@
 #include "io/bsdf_reader.h"
 #include "io/image_io.h"
 #include "io/json_reader.h"
-#include "core/lights/directional.h"
-#include "core/lights/environment.h"
-#include "core/lights/spot.h"
+#include "core/lights/area.h"
+#include "core/lights/registry.h"
 #include "io/meshes/mesh_file.h"
 
 namespace caustica {
@@ -458,91 +457,12 @@ struct Loader {
   }
 
   void read_light(const json& j, const std::string& p) {
-    if (!j.is_object()) r.fail(p, "expected an object");
-    const std::string type = r.string(r.require(j, p, "type"), child(p, "type"));
-    auto nonzero = [&](const char* key) {
-      const Color c = r.color(r.require(j, p, key), child(p, key));
-      if (is_black(c)) r.fail(child(p, key), std::string("a light with zero ") + key + " emits nothing");
-      return c;
-    };
-    auto direction = [&](const char* key) {
-      const Vec3 d = r.vec3(r.require(j, p, key), child(p, key));
-      if (!(glm::length(d) > 0.0f)) r.fail(child(p, key), "direction must not be zero");
-      return glm::normalize(d);
-    };
-    std::unique_ptr<Light> light;
-    if (type == "point") {
-      r.check_object(j, p, {"type", "name", "position", "intensity"});
-      light = std::make_unique<PointLight>(r.vec3(r.require(j, p, "position"), child(p, "position")), nonzero("intensity"));
-    } else if (type == "spot") {
-      r.check_object(j, p, {"type", "name", "position", "direction", "target", "intensity", "cutoff_angle", "beam_width"});
-      const Vec3 pos = r.vec3(r.require(j, p, "position"), child(p, "position"));
-      Vec3 dir;
-      if (j.contains("target") == j.contains("direction")) r.fail(p, "give either direction or target");
-      if (j.contains("target")) {
-        dir = r.vec3(j["target"], child(p, "target")) - pos;
-        if (!(glm::length(dir) > 0.0f)) r.fail(child(p, "target"), "target equals position");
-      } else {
-        dir = direction("direction");
-      }
-      const float cutoff = j.contains("cutoff_angle") ? float(r.number_in(j["cutoff_angle"], child(p, "cutoff_angle"), 0.01, 180.0)) : 20.0f;
-      const float beam = j.contains("beam_width") ? float(r.number_in(j["beam_width"], child(p, "beam_width"), 0.0, 180.0)) : 0.75f * cutoff;
-      if (beam > cutoff) r.fail(child(p, "beam_width"), "beam_width must not exceed cutoff_angle");
-      light = std::make_unique<PointLight>(pos, nonzero("intensity"), SpotProfile(dir, cutoff, beam));
-    } else if (type == "directional") {
-      r.check_object(j, p, {"type", "name", "direction", "irradiance"});
-      light = std::make_unique<DirectionalLight>(direction("direction"), nonzero("irradiance"));
-    } else if (type == "constant") {
-      r.check_object(j, p, {"type", "name", "radiance"});
-      light = EnvironmentLight::constant(nonzero("radiance"));
-    } else if (type == "envmap") {
-      r.check_object(j, p, {"type", "name", "filename", "scale", "to_world"});
-      const std::string file = r.string(r.require(j, p, "filename"), child(p, "filename"));
-      const fs::path path = fs::path(file).is_absolute() ? fs::path(file) : fs::path(base_dir) / file;
-      std::error_code ec;
-      if (!fs::is_regular_file(path, ec)) r.fail(child(p, "filename"), "environment map not found: tried " + path.string());
-      Image image;
-      try {
-        image = read_image(path.string());
-      } catch (const std::exception& e) {
-        r.fail(child(p, "filename"), std::string("cannot read the environment map: ") + e.what());
-      }
-      for (const Color& c : image.pixels) {
-        if (!is_finite(c) || c.x < 0 || c.y < 0 || c.z < 0) {
-          r.fail(child(p, "filename"), "environment map " + path.string() + " has negative or non-finite pixels");
-        }
-      }
-      const float scale = j.contains("scale") ? float(r.number_in(j["scale"], child(p, "scale"), 0.0, 1e30)) : 1.0f;
-      glm::mat3 to_world(1.0f);
-      if (j.contains("to_world")) to_world = read_rotation(j["to_world"], child(p, "to_world"));
-      auto env = std::make_unique<EnvironmentLight>(std::move(image), scale, to_world);
-      if (is_black(env->power())) r.fail(child(p, "filename"), "the environment map is black: it emits nothing");
-      light = std::move(env);
-    } else {
-      r.fail(child(p, "type"), "unknown light type \"" + type +
-                                   "\" (known: point, spot, directional, constant, envmap; area lights are objects "
-                                   "with an emissive material)");
-    }
+    const LightPlugin& row = plugin_row(r, j, p, light_plugins(), "light", {"name"},
+                                        "; area lights are objects with an emissive material");
     if (j.contains("name")) r.string(j["name"], child(p, "name"));
-    scene().lights.push_back(std::move(light));
-  }
-
-  // A rotation given as a 3x3 or 4x4 row-major matrix (the translation of a 4x4 is ignored).
-  glm::mat3 read_rotation(const json& m, const std::string& p) {
-    if (!m.is_array() || (m.size() != 3 && m.size() != 4)) r.fail(p, "expected a 3x3 or 4x4 matrix (an array of rows)");
-    glm::mat3 out(1.0f);
-    for (size_t row = 0; row < 3; ++row) {
-      const json& rw = m[row];
-      if (!rw.is_array() || rw.size() != m.size()) r.fail(child(p, row), "expected a row of " + std::to_string(m.size()) + " numbers");
-      for (size_t col = 0; col < 3; ++col) out[int(col)][int(row)] = float(r.number(rw[col], child(child(p, row), col)));
-    }
-    const glm::mat3 check = glm::transpose(out) * out;
-    for (int a = 0; a < 3; ++a) {
-      for (int b = 0; b < 3; ++b) {
-        if (std::abs(check[a][b] - (a == b ? 1.0f : 0.0f)) > 1e-3f) r.fail(p, "to_world must be a rotation (orthonormal)");
-      }
-    }
-    return out;
+    std::vector<std::unique_ptr<Bsdf>> nested;
+    const PluginContext ctx{r, base_dir, nested, scene().textures, out.warnings};
+    scene().lights.push_back(row.create(JsonParams(ctx, j, p)));
   }
 
   size_t degenerate_ = 0;

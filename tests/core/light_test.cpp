@@ -3,6 +3,8 @@
 #include <catch2/catch.hpp>
 #include "support/scenes.h"
 #include "core/lights/environment.h"
+#include "core/lights/area.h"
+#include "core/lights/point.h"
 #include "core/lights/spot.h"
 #include "io/scene_loader.h"
 #include "support/chi2.h"

@@ -2,6 +2,7 @@
 // (error messages, the Mitsuba translator) lists exactly the registry's rows.
 #include <catch2/catch.hpp>
 #include "core/bsdf/registry.h"
+#include "core/lights/registry.h"
 #include "core/textures/registry.h"
 #include "io/scene_loader.h"
 #include "support/errors.h"
@@ -38,6 +39,8 @@ TEST_CASE("registries: the docs name every registered plugin", "[core][registry]
   check_documented(bsdf_plugins());
   REQUIRE(texture_plugins().size() >= 2);
   check_documented(texture_plugins());
+  REQUIRE(light_plugins().size() >= 5);
+  check_documented(light_plugins());
 }
 
 TEST_CASE("registries: the BSDF table drives the JSON reader's errors and the Mitsuba translator", "[core][registry]") {

@@ -7,6 +7,7 @@
 #include <functional>
 #include <limits>
 #include <zlib.h>
+#include "core/lights/area.h"
 #include "io/json_reader.h"
 #include "io/meshes/mesh_file.h"
 #include "io/scene_loader.h"

@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 #include <filesystem>
 #include <limits>
+#include "core/lights/area.h"
 #include "io/json_reader.h"
 #include "io/scene_loader.h"
 #include "support/temp_dir.h"

@@ -1,5 +1,6 @@
 // Directional light.
 #include "core/lights/directional.h"
+#include "core/lights/read.h"
 
 namespace caustica {
 
@@ -25,6 +26,10 @@ EmittedPhoton DirectionalLight::sample_emission(const Vec2& u_pos, const Vec2&) 
   float pdf;
   const Vec3 origin = sample_origin(u_pos, normal, pdf);
   return {origin, normal, dir_, irradiance_ / pdf};
+}
+
+std::unique_ptr<Light> DirectionalLight::create(const Params& p) {
+  return std::make_unique<DirectionalLight>(read_direction(p, "direction"), read_nonzero(p, "irradiance"));
 }
 
 }  // namespace caustica

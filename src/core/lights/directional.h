@@ -1,7 +1,9 @@
 // Mitsuba's `directional`: parallel light of a given irradiance (on a surface facing it),
 // travelling along `direction`. Its photons leave a disc outside the scene's bounding sphere.
 #pragma once
-#include "core/light.h"
+#include <memory>
+#include "core/lights/light.h"
+#include "core/params.h"
 
 namespace caustica {
 
@@ -9,6 +11,8 @@ class DirectionalLight final : public InfiniteLight {
  public:
   DirectionalLight(const Vec3& direction, const Color& irradiance)
       : dir_(glm::normalize(direction)), irradiance_(irradiance) {}
+  // direction, irradiance.
+  static std::unique_ptr<Light> create(const Params& p);
   bool sample_li(const Vec3& x, const Vec2& u, LightSample& s) const override;
   EmittedPhoton sample_emission(const Vec2& u_pos, const Vec2& u_dir) const override;
   Vec3 sample_origin(const Vec2& u, Vec3& normal, float& pdf) const override;

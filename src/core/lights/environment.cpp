@@ -1,5 +1,6 @@
 // Environment lights.
 #include "core/lights/environment.h"
+#include "core/lights/read.h"
 
 namespace caustica {
 
@@ -105,5 +106,18 @@ EmittedPhoton EnvironmentLight::sample_emission(const Vec2& u_pos, const Vec2& u
   e.flux = value * (kPi * radius_ * radius_);
   return e;
 }
+
+std::unique_ptr<Light> EnvironmentLight::create(const Params& p) {
+  Image image = p.image("filename", "environment map");
+  for (const Color& c : image.pixels) {
+    if (!is_finite(c) || c.x < 0 || c.y < 0 || c.z < 0) p.fail("filename", "environment map " + p.string("filename", "") + " has negative or non-finite pixels");
+  }
+  const float scale = float(p.number_in("scale", 1.0, 0.0, 1e30));
+  auto env = std::make_unique<EnvironmentLight>(std::move(image), scale, p.rotation("to_world"));
+  if (is_black(env->power())) p.fail("filename", "the environment map is black: it emits nothing");
+  return env;
+}
+
+std::unique_ptr<Light> EnvironmentLight::create_constant(const Params& p) { return constant(read_nonzero(p, "radiance")); }
 
 }  // namespace caustica

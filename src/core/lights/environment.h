@@ -5,7 +5,8 @@
 // sampling and evaluation agree exactly.
 #pragma once
 #include "core/image.h"
-#include "core/light.h"
+#include "core/lights/light.h"
+#include "core/params.h"
 #include "core/sampling.h"
 
 namespace caustica {
@@ -15,6 +16,10 @@ class EnvironmentLight final : public InfiniteLight {
   // to_world: the light's rotation (columns: the local axes in world space).
   EnvironmentLight(Image image, float scale, const glm::mat3& to_world);
   static std::unique_ptr<EnvironmentLight> constant(const Color& radiance);
+  // `envmap`: filename, scale, to_world.
+  static std::unique_ptr<Light> create(const Params& p);
+  // `constant`: radiance.
+  static std::unique_ptr<Light> create_constant(const Params& p);
 
   bool sample_li(const Vec3& x, const Vec2& u, LightSample& s) const override;
   EmittedPhoton sample_emission(const Vec2& u_pos, const Vec2& u_dir) const override;

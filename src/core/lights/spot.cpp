@@ -1,5 +1,7 @@
-// Spot profile.
+// Spot lights.
 #include "core/lights/spot.h"
+#include "core/lights/point.h"
+#include "core/lights/read.h"
 
 namespace caustica {
 
@@ -25,6 +27,22 @@ float SpotProfile::falloff(const Vec3& dir) const {
   if (cos_t <= cos_cutoff_) return 0.0f;
   if (cos_t >= cos_beam_ || cutoff_ <= beam_) return 1.0f;
   return (cutoff_ - std::acos(std::min(1.0f, cos_t))) / (cutoff_ - beam_);
+}
+
+std::unique_ptr<Light> create_spot_light(const Params& p) {
+  const Vec3 pos = p.vec3("position");
+  Vec3 dir;
+  if (p.has("target") == p.has("direction")) p.fail("", "give either direction or target");
+  if (p.has("target")) {
+    dir = p.vec3("target") - pos;
+    if (!(glm::length(dir) > 0.0f)) p.fail("target", "target equals position");
+  } else {
+    dir = read_direction(p, "direction");
+  }
+  const float cutoff = float(p.number_in("cutoff_angle", 20.0, 0.01, 180.0));
+  const float beam = p.has("beam_width") ? float(p.number_in("beam_width", 0.0, 0.0, 180.0)) : 0.75f * cutoff;
+  if (beam > cutoff) p.fail("beam_width", "beam_width must not exceed cutoff_angle");
+  return std::make_unique<PointLight>(pos, read_nonzero(p, "intensity"), SpotProfile(dir, cutoff, beam));
 }
 
 }  // namespace caustica

@@ -1,9 +1,17 @@
-// Mitsuba's `spot` profile: full intensity within beam_width of the axis, falling off linearly
-// in the angle (as Mitsuba 3 does) to zero at cutoff_angle. A point light carries one.
+// Mitsuba's `spot`: a point light (core/lights/point.h) with a profile of full intensity within
+// beam_width of the axis, falling off linearly in the angle (as Mitsuba 3 does) to zero at
+// cutoff_angle.
 #pragma once
+#include <memory>
 #include "core/math.h"
+#include "core/params.h"
 
 namespace caustica {
+
+class Light;
+
+// position, direction or target, intensity, cutoff_angle, beam_width: a PointLight with a profile.
+std::unique_ptr<Light> create_spot_light(const Params& p);
 
 class SpotProfile {
  public:

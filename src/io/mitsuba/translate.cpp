@@ -8,6 +8,7 @@
 #include <map>
 #include <set>
 #include "core/bsdf/registry.h"
+#include "core/lights/registry.h"
 #include "core/textures/registry.h"
 #include "io/mitsuba/shapes.h"
 #include "io/mitsuba/spectrum.h"
@@ -34,13 +35,21 @@ const std::set<std::string>& mitsuba_bsdfs() {
   static const std::set<std::string> names = mitsuba_names(bsdf_plugins());
   return names;
 }
+// Mitsuba's `area` emitter has no row: it sits in a shape and becomes its material's emission.
+const std::set<std::string>& mitsuba_emitters() {
+  static const std::set<std::string> names = [] {
+    std::set<std::string> s = mitsuba_names(light_plugins());
+    s.insert("area");
+    return s;
+  }();
+  return names;
+}
 const std::set<std::string>& mitsuba_textures() {
   static const std::set<std::string> names = mitsuba_names(texture_plugins());
   return names;
 }
 const std::set<std::string> kShapes = {"obj",  "ply",    "serialized", "rectangle", "cube",
                                        "disk", "sphere", "cylinder",   "shapegroup", "instance"};
-const std::set<std::string> kEmitters = {"area", "point", "spot", "directional", "constant", "envmap"};
 const std::set<std::string> kIntegrators = {"path", "volpath", "volpathmis", "direct", "photonmapper",
                                             "sppm", "ppm",  "moment",  "aov"};
 
@@ -854,8 +863,8 @@ class Translator {
   // ---------------------------------------------------------------- emitters
   void emitter(const XmlObject& o) {
     if (o.type == "area") throw InputError(o.where + ": an area emitter belongs inside a <shape>");
-    if (!kEmitters.count(o.type)) {
-      unsupported(o, "emitter", kEmitters, "skipped");
+    if (!mitsuba_emitters().count(o.type)) {
+      unsupported(o, "emitter", mitsuba_emitters(), "skipped");
       return;
     }
     json& lights = out_.doc["lights"];

@@ -1,10 +1,10 @@
-// Lights: sampled for shadow rays (next-event estimation) and for photon emission.
+// The light (emitter) interface: sampled for shadow rays (next-event estimation) and for photon
+// emission. One plugin per file pair in core/lights/, each listed once in
+// core/lights/registry.cpp; area lights are made by the scene reader from emissive objects.
 #pragma once
 #include <memory>
-#include <optional>
 #include <vector>
 #include "core/sampling.h"
-#include "core/lights/spot.h"
 #include "core/shape.h"
 
 namespace caustica {
@@ -76,59 +76,5 @@ class InfiniteLight : public Light {
 
 // A point uniformly on the disc of radius r centred at c perpendicular to the unit vector d.
 Vec3 point_on_disc(const Vec3& c, const Vec3& d, float r, const Vec2& u);
-
-// Any emissive shape: triangles (from a quad or mesh) or a sphere, sampled uniformly by area,
-// emitting Le on the front side only.
-class AreaLight final : public Light {
- public:
-  AreaLight(std::vector<Primitive> shapes, const Color& radiance);
-  bool sample_li(const Vec3& x, const Vec2& u, LightSample& s) const override;
-  EmittedPhoton sample_emission(const Vec2& u_pos, const Vec2& u_dir) const override;
-  Vec3 sample_origin(const Vec2& u, Vec3& normal, float& pdf) const override {
-    pdf = 1.0f / area_;
-    return sample_point(u, normal);
-  }
-  Color emitted_towards(const Vec3& normal, const Vec3& dir) const override {
-    return radiance_ * std::max(0.0f, glm::dot(normal, dir));
-  }
-  Color power() const override { return kPi * area_ * radiance_; }
-  bool is_delta() const override { return false; }
-  Bounds bounds() const override;
-  float pdf_li(const Vec3& x, const Vec3& y, const Vec3& ny) const override;
-  float area() const { return area_; }
-  Color surface_radiance() const override { return radiance_; }
-
- private:
-  Vec3 sample_point(Vec2 u, Vec3& n) const;
-  std::vector<Primitive> shapes_;
-  Distribution1D by_area_;
-  Color radiance_;
-  float area_ = 0;
-};
-
-// A point light, uniform in every direction or shaped by a spot profile.
-class PointLight final : public Light {
- public:
-  PointLight(const Vec3& position, const Color& intensity) : position_(position), intensity_(intensity) {}
-  PointLight(const Vec3& position, const Color& intensity, const SpotProfile& spot)
-      : position_(position), intensity_(intensity), spot_(spot) {}
-  bool sample_li(const Vec3& x, const Vec2& u, LightSample& s) const override;
-  EmittedPhoton sample_emission(const Vec2& u_pos, const Vec2& u_dir) const override;
-  Vec3 sample_origin(const Vec2&, Vec3& normal, float& pdf) const override {
-    normal = Vec3(0.0f);
-    pdf = 1.0f;
-    return position_;
-  }
-  Color emitted_towards(const Vec3&, const Vec3& dir) const override { return intensity_ * falloff(dir); }
-  Color power() const override { return intensity_ * (spot_ ? spot_->solid_angle() : 4.0f * kPi); }
-  bool is_delta() const override { return true; }
-  Bounds bounds() const override;
-
- private:
-  float falloff(const Vec3& dir) const { return spot_ ? spot_->falloff(dir) : 1.0f; }
-  Vec3 position_;
-  Color intensity_;
-  std::optional<SpotProfile> spot_;
-};
 
 }  // namespace caustica

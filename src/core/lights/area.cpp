@@ -1,13 +1,7 @@
-// Area and point lights.
-#include "core/light.h"
+// Area lights.
+#include "core/lights/area.h"
 
 namespace caustica {
-
-Vec3 point_on_disc(const Vec3& c, const Vec3& d, float r, const Vec2& u) {
-  const Vec2 q = sample_concentric_disk(u) * r;
-  const Frame f(d);
-  return c + q.x * f.s + q.y * f.t;
-}
 
 AreaLight::AreaLight(std::vector<Primitive> shapes, const Color& radiance)
     : shapes_(std::move(shapes)), radiance_(radiance) {
@@ -56,32 +50,6 @@ EmittedPhoton AreaLight::sample_emission(const Vec2& u_pos, const Vec2& u_dir) c
 Bounds AreaLight::bounds() const {
   Bounds b;
   for (const Primitive& p : shapes_) b.extend(p.bounds());
-  return b;
-}
-
-bool PointLight::sample_li(const Vec3& x, const Vec2&, LightSample& s) const {
-  const Vec3 d = position_ - x;
-  const float dist2 = glm::dot(d, d);
-  if (dist2 <= 0.0f) return false;
-  s.p = position_;
-  s.n = Vec3(0.0f);
-  s.dist = std::sqrt(dist2);
-  s.wi = d / s.dist;
-  s.weight = intensity_ * (falloff(-s.wi) / dist2);
-  s.pdf = 0.0f;
-  return !is_black(s.weight);
-}
-
-EmittedPhoton PointLight::sample_emission(const Vec2&, const Vec2& u_dir) const {
-  if (!spot_) return {position_, Vec3(0.0f), sample_uniform_sphere(u_dir), power()};
-  // Uniform within the cutoff cone: flux = I falloff / pdf.
-  const Vec3 dir = spot_->frame().to_world(sample_uniform_cone(u_dir, spot_->cos_cutoff()));
-  return {position_, Vec3(0.0f), dir, intensity_ * (falloff(dir) / uniform_cone_pdf(spot_->cos_cutoff()))};
-}
-
-Bounds PointLight::bounds() const {
-  Bounds b;
-  b.extend(position_);
   return b;
 }
 

@@ -1,0 +1,37 @@
+// Point lights.
+#include "core/lights/point.h"
+#include "core/lights/read.h"
+
+namespace caustica {
+
+bool PointLight::sample_li(const Vec3& x, const Vec2&, LightSample& s) const {
+  const Vec3 d = position_ - x;
+  const float dist2 = glm::dot(d, d);
+  if (dist2 <= 0.0f) return false;
+  s.p = position_;
+  s.n = Vec3(0.0f);
+  s.dist = std::sqrt(dist2);
+  s.wi = d / s.dist;
+  s.weight = intensity_ * (falloff(-s.wi) / dist2);
+  s.pdf = 0.0f;
+  return !is_black(s.weight);
+}
+
+EmittedPhoton PointLight::sample_emission(const Vec2&, const Vec2& u_dir) const {
+  if (!spot_) return {position_, Vec3(0.0f), sample_uniform_sphere(u_dir), power()};
+  // Uniform within the cutoff cone: flux = I falloff / pdf.
+  const Vec3 dir = spot_->frame().to_world(sample_uniform_cone(u_dir, spot_->cos_cutoff()));
+  return {position_, Vec3(0.0f), dir, intensity_ * (falloff(dir) / uniform_cone_pdf(spot_->cos_cutoff()))};
+}
+
+Bounds PointLight::bounds() const {
+  Bounds b;
+  b.extend(position_);
+  return b;
+}
+
+std::unique_ptr<Light> PointLight::create(const Params& p) {
+  return std::make_unique<PointLight>(p.vec3("position"), read_nonzero(p, "intensity"));
+}
+
+}  // namespace caustica

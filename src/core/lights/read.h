@@ -1,0 +1,21 @@
+// What several light plugins read alike.
+#pragma once
+#include "core/params.h"
+
+namespace caustica {
+
+// A required colour that must not be black ("a light with zero intensity emits nothing").
+inline Color read_nonzero(const Params& p, const std::string& key) {
+  const Color c = p.color(key);
+  if (is_black(c)) p.fail(key, "a light with zero " + key + " emits nothing");
+  return c;
+}
+
+// A required direction, normalised; zero is an error.
+inline Vec3 read_direction(const Params& p, const std::string& key) {
+  const Vec3 d = p.vec3(key);
+  if (!(glm::length(d) > 0.0f)) p.fail(key, "direction must not be zero");
+  return glm::normalize(d);
+}
+
+}  // namespace caustica
