@@ -1,6 +1,7 @@
 // Command line (CLI11): `caustica render | compare | converge | photons`.
 #include "app/cli.h"
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cmath>
 #include <iostream>
 #include "app/compare_command.h"
@@ -14,36 +15,21 @@
 namespace caustica {
 namespace {
 
-// Photon-mapping settings (integrators photon and photon-direct); each maps to a settings key.
-struct PhotonFlag {
-  const char* flag;
-  const char* key;
-  const char* help;
-  bool real;
-};
-constexpr PhotonFlag kPhotonFlags[] = {
-    {"--photons", "photons", "Photons stored in the global map", false},
-    {"--caustic-photons", "caustic_photons", "Photons stored in the caustic map", false},
-    {"--global-k", "global_k", "Nearest photons per global-map estimate", false},
-    {"--caustic-k", "caustic_k", "Nearest photons per caustic-map estimate", false},
-    {"--global-radius", "global_radius", "Maximum global-map search radius (scene units)", true},
-    {"--caustic-radius", "caustic_radius", "Maximum caustic-map search radius (scene units)", true},
-    {"--gather-rays", "gather_rays", "Final-gather rays per first diffuse hit", false},
-    {"--direct-samples", "direct_samples", "Shadow-ray samples per first diffuse hit", false},
-    {"--irradiance-stride", "irradiance_stride", "Precompute irradiance at every n-th global photon (0: off)", false},
-    {"--glossy-threshold", "glossy_threshold", "Store photons and gather on glossy lobes at least this rough (alpha)", true},
-    {"--alpha", "alpha", "Progressive photon mapping and sppm: radius reduction, in (0, 1) (default 2/3)", true},
-    {"--radius", "radius", "sppm: first radius of every pixel (scene units)", true},
-};
-constexpr size_t kPhotonFlagCount = sizeof(kPhotonFlags) / sizeof(kPhotonFlags[0]);
+// An integrator setting's flag: "--photons" for "photons".
+std::string flag_of(const std::string& key) {
+  std::string flag = "--" + key;
+  std::replace(flag.begin(), flag.end(), '_', '-');
+  return flag;
+}
 
 // The options every scene-reading subcommand takes.
 struct SceneFlags {
   SceneOptions* options = nullptr;
-  double photon_values[kPhotonFlagCount] = {};
-  CLI::Option* photon_options[kPhotonFlagCount] = {};
+  // One entry per integrator_settings() row: a number's value, or a boolean's --key / --no-key.
+  std::vector<double> values;
+  std::vector<CLI::Option*> given;
+  std::vector<int> on, off;
   std::vector<std::string> defines;
-  bool progressive = false, no_progressive = false;
 
   void add(CLI::App* cmd, SceneOptions& o, bool with_spp) {
     options = &o;
@@ -63,34 +49,49 @@ struct SceneFlags {
     cmd->add_option("--accel", o.accel, "Ray casting: embree (the default where built) or bvh (our own)")
         ->check(CLI::IsMember({"bvh", "embree"}));
     cmd->add_flag("-q,--quiet", o.quiet, "No progress bar and no statistics");
-    for (size_t i = 0; i < kPhotonFlagCount; ++i) {
-      photon_options[i] = cmd->add_option(kPhotonFlags[i].flag, photon_values[i], kPhotonFlags[i].help)
-                              ->group("Photon mapping")
-                              ->check(CLI::NonNegativeNumber);
+    // The integrators' settings, from their registry: each flag says which integrators read it.
+    const std::vector<IntegratorSetting>& settings = integrator_settings();
+    values.assign(settings.size(), 0.0);
+    given.assign(settings.size(), nullptr);
+    on.assign(settings.size(), 0);
+    off.assign(settings.size(), 0);
+    for (size_t i = 0; i < settings.size(); ++i) {
+      const IntegratorSetting& s = settings[i];
+      const std::string help = std::string(s.help) + " (" + integrators_reading(s.key) + ")";
+      const std::string flag = flag_of(s.key);
+      if (s.kind == SettingKind::Boolean) {
+        given[i] = cmd->add_flag(flag, on[i], help)->group("Integrator settings");
+        cmd->add_flag("--no-" + flag.substr(2), off[i], "The opposite of " + flag)
+            ->group("Integrator settings")
+            ->excludes(given[i]);
+      } else {
+        given[i] = cmd->add_option(flag, values[i], help)
+                       ->group("Integrator settings")
+                       ->type_name(s.kind == SettingKind::Integer ? "INT" : "FLOAT")
+                       ->check(CLI::NonNegativeNumber);
+      }
     }
-    auto* on = cmd->add_flag("--progressive", progressive,
-                             "photon: fresh photon maps every pass, radii shrinking (consistent)")
-                   ->group("Photon mapping");
-    cmd->add_flag("--no-progressive", no_progressive, "photon: one pair of photon maps for all passes")
-        ->group("Photon mapping")
-        ->excludes(on);
   }
-  // Moves the photon flags given into options->integrator_overrides, and -D into the Mitsuba options.
+  // Moves the integrator flags given into options->integrator_overrides, and -D into the Mitsuba options.
   void collect() const {
-    if (progressive || no_progressive) options->integrator_overrides.emplace_back("progressive", progressive);
     for (const std::string& d : defines) {
       const size_t eq = d.find('=');
       if (eq == std::string::npos || eq == 0) throw InputError("-D " + d + ": expected name=value");
       options->mitsuba.xml.defines.emplace_back(d.substr(0, eq), d.substr(eq + 1));
     }
-    for (size_t i = 0; i < kPhotonFlagCount; ++i) {
-      if (photon_options[i]->count() == 0) continue;
-      const double v = photon_values[i];
-      if (!kPhotonFlags[i].real && v != std::floor(v)) {
-        throw InputError(std::string(kPhotonFlags[i].flag) + " " + std::to_string(v) + ": expected a whole number");
+    const std::vector<IntegratorSetting>& settings = integrator_settings();
+    for (size_t i = 0; i < settings.size(); ++i) {
+      const IntegratorSetting& s = settings[i];
+      if (s.kind == SettingKind::Boolean) {
+        if (on[i] || off[i]) options->integrator_overrides.emplace_back(s.key, on[i] > 0);
+        continue;
       }
-      options->integrator_overrides.emplace_back(kPhotonFlags[i].key,
-                                                 kPhotonFlags[i].real ? nlohmann::json(v) : nlohmann::json(int64_t(v)));
+      if (given[i]->count() == 0) continue;
+      const double v = values[i];
+      if (s.kind == SettingKind::Integer && v != std::floor(v)) {
+        throw InputError(flag_of(s.key) + " " + std::to_string(v) + ": expected a whole number");
+      }
+      options->integrator_overrides.emplace_back(s.key, s.kind == SettingKind::Real ? nlohmann::json(v) : nlohmann::json(int64_t(v)));
     }
   }
 };

@@ -9,7 +9,7 @@
 #include <unistd.h>
 #include "core/metrics.h"
 #include "io/image_io.h"
-#include "trace/photon_integrator.h"
+#include "trace/integrator.h"
 #include "trace/render.h"
 
 namespace caustica {
@@ -109,11 +109,10 @@ int run_photons(const PhotonsArgs& args) {
   tbb::global_control control(tbb::global_control::max_allowed_parallelism, size_t(threads));
 
   auto integrator = integrator_for(loaded, "photon", args.common);
-  auto* photon = dynamic_cast<PhotonIntegrator*>(integrator.get());
-  photon->preprocess(scene, {scene.render.seed, args.common.quiet});
+  integrator->preprocess(scene, {scene.render.seed, args.common.quiet});
   std::vector<const PhotonMap*> maps;
-  if (args.map != "caustic") maps.push_back(&photon->global_map());
-  if (args.map != "global") maps.push_back(&photon->caustic_map());
+  if (args.map != "caustic") maps.push_back(integrator->global_map());
+  if (args.map != "global") maps.push_back(integrator->caustic_map());
 
   size_t visible = 0, total = 0;
   for (const PhotonMap* m : maps) total += m->size();
@@ -133,7 +132,7 @@ int run_photons(const PhotonsArgs& args) {
   }
   if (!args.common.quiet) {
     std::cout << "photons: " << total << " in " << args.map << " map" << (args.map == "both" ? "s" : "") << "\n"
-              << photon->describe();
+              << integrator->describe();
     if (ext == ".png") std::cout << "visible from the camera: " << visible << "\n";
     std::cout << "wrote " << args.output << "\n";
   }

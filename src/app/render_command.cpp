@@ -50,7 +50,7 @@ int run_render(const RenderArgs& args) {
   }
 
   std::unique_ptr<Integrator> integrator = integrator_for(loaded, args.integrator, args.common);
-  if (args.aov && integrator->name().rfind("photon", 0) != 0) {
+  if (args.aov && !integrator->supports_aov()) {
     throw InputError("--aov needs a photon integrator (photon or photon-direct), not \"" + integrator->name() + "\"");
   }
   // Under mpirun: every rank must render the same image, and the integrator's passes must not

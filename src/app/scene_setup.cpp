@@ -74,12 +74,9 @@ std::unique_ptr<Integrator> integrator_for(const LoadedScene& loaded, const std:
   for (const auto& kv : options.integrator_overrides) {
     std::string flag = "--" + kv.first;
     std::replace(flag.begin(), flag.end(), '_', '-');
-    const bool gather_only = kv.first == "gather_rays" || kv.first == "direct_samples" || kv.first == "irradiance_stride";
-    const bool sppm_key = kv.first == "photons" || kv.first == "alpha" || kv.first == "glossy_threshold";
-    const bool applies = type == "sppm" ? sppm_key || kv.first == "radius"
-                       : type == "photon" ? kv.first != "radius"
-                       : type == "photon-direct" ? kv.first != "radius" && !gather_only
-                       : false;
+    // A flag applies to the integrators whose registry row lists its key.
+    const IntegratorPlugin* row = find_integrator_plugin(type);
+    const bool applies = row && std::find(row->keys.begin(), row->keys.end(), kv.first) != row->keys.end();
     if (!applies) {
       if (lenient) continue;
       throw InputError(flag + " does not apply to integrator \"" + type + "\"");
@@ -91,7 +88,8 @@ std::unique_ptr<Integrator> integrator_for(const LoadedScene& loaded, const std:
       if (flag.first == kv.first) {
         std::string name = "--" + kv.first;
         std::replace(name.begin(), name.end(), '_', '-');
-        if (kv.first == "progressive") name = "--progressive/--no-progressive";
+        const IntegratorSetting* setting = find_integrator_setting(kv.first);
+        if (setting && setting->kind == SettingKind::Boolean) name += "/--no-" + name.substr(2);
         throw InputError("integrator \"" + spec + "\" sets " + kv.first + " and so does " + name + ": give it once");
       }
     }

@@ -21,6 +21,7 @@ class Params {
   // Each getter with a fallback returns it when the key is absent.
   virtual double number(const std::string& key, double fallback) const = 0;  // finite, fits a float
   virtual double number_in(const std::string& key, double fallback, double lo, double hi) const = 0;
+  virtual int64_t integer(const std::string& key, int64_t fallback, int64_t lo, int64_t hi) const = 0;
   virtual bool boolean(const std::string& key, bool fallback) const = 0;
   virtual std::string string(const std::string& key, const std::string& fallback) const = 0;
   virtual Color color(const std::string& key, const Color& fallback) const = 0;  // non-negative

@@ -72,6 +72,10 @@ double JsonParams::number_in(const std::string& key, double fallback, double lo,
   return has(key) ? r_.number_in(m_[key], at(key), lo, hi) : fallback;
 }
 
+int64_t JsonParams::integer(const std::string& key, int64_t fallback, int64_t lo, int64_t hi) const {
+  return has(key) ? r_.integer(m_[key], at(key), lo, hi) : fallback;
+}
+
 bool JsonParams::boolean(const std::string& key, bool fallback) const {
   return has(key) ? r_.boolean(m_[key], at(key)) : fallback;
 }

@@ -30,6 +30,7 @@ class JsonParams final : public Params {
   bool is_string(const std::string& key) const override { return has(key) && m_[key].is_string(); }
   double number(const std::string& key, double fallback) const override;
   double number_in(const std::string& key, double fallback, double lo, double hi) const override;
+  int64_t integer(const std::string& key, int64_t fallback, int64_t lo, int64_t hi) const override;
   bool boolean(const std::string& key, bool fallback) const override;
   std::string string(const std::string& key, const std::string& fallback) const override;
   Color color(const std::string& key, const Color& fallback) const override;
@@ -50,6 +51,28 @@ class JsonParams final : public Params {
   const JsonReader& r_;
   const nlohmann::json& m_;
   const std::string& p_;
+};
+
+// A block that stands alone, such as an integrator's settings (src.value at src.pointer), as
+// Params: its own reader, no textures or nested BSDFs. `src` must outlive it.
+class SourceParams {
+ public:
+  explicit SourceParams(const JsonSource& src)
+      : reader_(src.file, src.sources), ctx_{reader_, ".", nested_, textures_, warnings_}, pointer_(src.pointer),
+        params_(ctx_, src.value, pointer_) {}
+  SourceParams(const SourceParams&) = delete;
+  SourceParams& operator=(const SourceParams&) = delete;
+  const JsonReader& reader() const { return reader_; }
+  const Params& params() const { return params_; }
+
+ private:
+  JsonReader reader_;
+  std::vector<std::unique_ptr<Bsdf>> nested_;
+  std::vector<std::unique_ptr<Texture>> textures_;
+  std::vector<std::string> warnings_;
+  PluginContext ctx_;
+  std::string pointer_;
+  JsonParams params_;
 };
 
 // The registry row that block `m` (at pointer `p`) names by its "type", after checking that it

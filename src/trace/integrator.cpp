@@ -1,30 +1,79 @@
-// The factory table: every integrator by name (Tungsten's IntegratorFactory in spirit).
+// The integrator family's tables: every integrator by name with its keys (Tungsten's
+// IntegratorFactory in spirit), and every settings key with its kind and help.
 #include "trace/integrator.h"
 #include <algorithm>
-#include <functional>
 #include <iostream>
+#include "core/registry.h"
+#include "io/json_params.h"
 #include "trace/path.h"
 #include "trace/photon_integrator.h"
 #include "trace/sppm.h"
 #include "trace/whitted.h"
 
 namespace caustica {
-namespace {
 
-using Maker = std::function<std::unique_ptr<Integrator>(const JsonSource&, const RenderSettings&)>;
-
-const std::vector<std::pair<std::string, Maker>>& table() {
-  static const std::vector<std::pair<std::string, Maker>> t = {
-      {"path", [](const JsonSource& s, const RenderSettings& r) { return std::make_unique<PathIntegrator>(s, r); }},
-      {"photon", [](const JsonSource& s, const RenderSettings& r) { return std::make_unique<PhotonIntegrator>(s, r, true); }},
-      {"photon-direct", [](const JsonSource& s, const RenderSettings& r) { return std::make_unique<PhotonIntegrator>(s, r, false); }},
-      {"sppm", [](const JsonSource& s, const RenderSettings& r) { return std::make_unique<SppmIntegrator>(s, r); }},
-      {"whitted", [](const JsonSource& s, const RenderSettings& r) { return std::make_unique<WhittedIntegrator>(s, r); }},
+const std::vector<IntegratorPlugin>& integrator_plugins() {
+  static const std::vector<IntegratorPlugin> table = {
+      {"path", PathIntegrator::create, {"rr_depth", "hide_emitters"}},
+      {"photon", PhotonIntegrator::create,
+       {"photons", "caustic_photons", "global_k", "caustic_k", "global_radius", "caustic_radius", "gather_rays",
+        "direct_samples", "irradiance_stride", "glossy_threshold", "hide_emitters", "progressive", "alpha"}},
+      {"photon-direct", PhotonIntegrator::create_direct,
+       {"photons", "caustic_photons", "global_k", "caustic_k", "global_radius", "caustic_radius", "glossy_threshold",
+        "hide_emitters", "progressive", "alpha"}},
+      {"sppm", SppmIntegrator::create, {"photons", "radius", "alpha", "glossy_threshold", "hide_emitters"}},
+      {"whitted", WhittedIntegrator::create, {}},
   };
-  return t;
+  return table;
 }
 
-}  // namespace
+const std::vector<IntegratorSetting>& integrator_settings() {
+  static const std::vector<IntegratorSetting> table = {
+      {"photons", SettingKind::Integer, "Photons stored in the global map (sppm: per pass)"},
+      {"caustic_photons", SettingKind::Integer, "Photons stored in the caustic map"},
+      {"global_k", SettingKind::Integer, "Nearest photons per global-map estimate"},
+      {"caustic_k", SettingKind::Integer, "Nearest photons per caustic-map estimate"},
+      {"global_radius", SettingKind::Real, "Maximum global-map search radius (scene units)"},
+      {"caustic_radius", SettingKind::Real, "Maximum caustic-map search radius (scene units)"},
+      {"gather_rays", SettingKind::Integer, "Final-gather rays per first diffuse hit"},
+      {"direct_samples", SettingKind::Integer, "Shadow-ray samples per first diffuse hit"},
+      {"irradiance_stride", SettingKind::Integer, "Precompute irradiance at every n-th global photon (0: off)"},
+      {"glossy_threshold", SettingKind::Real, "Store photons and gather on glossy lobes at least this rough (alpha)"},
+      {"alpha", SettingKind::Real, "Progressive photon mapping and sppm: radius reduction, in (0, 1) (default 2/3)"},
+      {"radius", SettingKind::Real, "First radius of every pixel (scene units)"},
+      {"progressive", SettingKind::Boolean, "Fresh photon maps every pass, radii shrinking (consistent)"},
+      {"rr_depth", SettingKind::Integer, "Russian roulette starts after this many bounces"},
+      {"hide_emitters", SettingKind::Boolean, "Directly visible emitters and the environment render black"},
+  };
+  return table;
+}
+
+const IntegratorPlugin* find_integrator_plugin(const std::string& name) {
+  return find_plugin(integrator_plugins(), name);
+}
+
+const IntegratorSetting* find_integrator_setting(const std::string& key) {
+  for (const IntegratorSetting& s : integrator_settings()) {
+    if (key == s.key) return &s;
+  }
+  return nullptr;
+}
+
+std::string integrators_reading(const std::string& key) {
+  std::string out;
+  for (const IntegratorPlugin& p : integrator_plugins()) {
+    if (std::find(p.keys.begin(), p.keys.end(), key) != p.keys.end()) out += (out.empty() ? "" : ", ") + std::string(p.name);
+  }
+  return out;
+}
+
+MonteCarloSettings read_monte_carlo(const Params& p, const RenderSettings& render) {
+  MonteCarloSettings s;
+  s.max_depth = render.max_depth;
+  s.rr_depth = int(p.integer("rr_depth", s.rr_depth, 0, 1024));
+  s.hide_emitters = p.boolean("hide_emitters", s.hide_emitters);
+  return s;
+}
 
 void report_new_warnings(const std::vector<std::string>& fresh, std::vector<std::string>& seen, bool quiet) {
   for (const std::string& w : fresh) {
@@ -36,18 +85,17 @@ void report_new_warnings(const std::vector<std::string>& fresh, std::vector<std:
 
 std::vector<std::string> integrator_names() {
   std::vector<std::string> names;
-  for (const auto& e : table()) names.push_back(e.first);
+  for (const IntegratorPlugin& p : integrator_plugins()) names.push_back(p.name);
   return names;
 }
 
 std::unique_ptr<Integrator> create_integrator(const std::string& type, const JsonSource& settings,
                                               const RenderSettings& render) {
-  for (const auto& e : table()) {
-    if (e.first == type) return e.second(settings, render);
-  }
-  std::string known;
-  for (const auto& n : integrator_names()) known += (known.empty() ? "" : ", ") + n;
-  throw InputError("unknown integrator \"" + type + "\" (known: " + known + ")");
+  const IntegratorPlugin* row = find_integrator_plugin(type);
+  if (!row) throw InputError("unknown integrator \"" + type + "\" (known: " + plugin_names(integrator_plugins()) + ")");
+  const SourceParams params(settings);
+  params.reader().check_object(settings.value, settings.pointer, row->keys);
+  return row->create(params.params(), render);
 }
 
 }  // namespace caustica

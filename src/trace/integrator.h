@@ -1,13 +1,17 @@
-// The integrator interface and the factory table that creates integrators by name.
+// The integrator interface, the settings every Monte Carlo integrator shares, and the family's
+// registry table: each integrator by name with the settings keys it reads. The command line's
+// per-integrator flags and their "applies to" rules come from that table.
 #pragma once
 #include <atomic>
 #include <memory>
 #include <string>
 #include <vector>
 #include "core/image.h"
-#include "io/json_reader.h"
+#include "core/params.h"
 #include "core/sampler.h"
 #include "core/scene.h"
+#include "io/json_reader.h"
+#include "photon/photon_map.h"
 
 namespace caustica {
 
@@ -39,7 +43,46 @@ class Integrator {
   virtual std::string name() const = 0;
   // Settings and preprocess statistics, one "key: value" per line, for the render report.
   virtual std::string describe() const = 0;
+
+  // Capabilities, asked instead of testing names or types.
+  // Whether Li() fills the sampler's AOVs (photon count and gather radius: --aov).
+  virtual bool supports_aov() const { return false; }
+  // The photon maps after preprocess, for pictures of them; null where there are none.
+  virtual const PhotonMap* global_map() const { return nullptr; }
+  virtual const PhotonMap* caustic_map() const { return nullptr; }
 };
+
+// What Monte Carlo integrators share (Mitsuba's MonteCarloIntegrator), read once by
+// read_monte_carlo; each integrator's settings struct extends it.
+struct MonteCarloSettings {
+  int max_depth = 16;          // from the render block (and --max-depth)
+  int rr_depth = 3;            // Russian roulette starts after this many bounces
+  bool hide_emitters = false;  // directly visible emitters (and the environment) render black
+};
+MonteCarloSettings read_monte_carlo(const Params& p, const RenderSettings& render);
+
+// One row of the integrator table: its name, its create function and the settings keys it
+// reads (the block may hold no others).
+struct IntegratorPlugin {
+  const char* name;
+  std::unique_ptr<Integrator> (*create)(const Params&, const RenderSettings&);
+  std::vector<const char*> keys;
+};
+const std::vector<IntegratorPlugin>& integrator_plugins();
+const IntegratorPlugin* find_integrator_plugin(const std::string& name);
+
+// Every settings key that some integrator reads, once, with its kind and what it does: the
+// command line offers each as a flag (--photons for "photons"; a boolean also as --no-...).
+enum class SettingKind { Integer, Real, Boolean };
+struct IntegratorSetting {
+  const char* key;
+  SettingKind kind;
+  const char* help;
+};
+const std::vector<IntegratorSetting>& integrator_settings();
+const IntegratorSetting* find_integrator_setting(const std::string& key);
+// The names of the integrators whose row lists `key`, e.g. "photon, photon-direct".
+std::string integrators_reading(const std::string& key);
 
 // Prints (unless quiet) and records the warnings of `fresh` not already in `seen`: a
 // progressive integrator's passes repeat the photon pass's warnings.

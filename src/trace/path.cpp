@@ -7,16 +7,8 @@
 
 namespace caustica {
 
-PathIntegrator::PathIntegrator(const JsonSource& settings, const RenderSettings& render) {
-  JsonReader r(settings.file, settings.sources);
-  r.check_object(settings.value, settings.pointer, {"rr_depth", "hide_emitters"});
-  settings_.max_depth = render.max_depth;
-  if (settings.value.contains("hide_emitters")) {
-    settings_.hide_emitters = r.boolean(settings.value["hide_emitters"], child(settings.pointer, "hide_emitters"));
-  }
-  if (settings.value.contains("rr_depth")) {
-    settings_.rr_depth = int(r.integer(settings.value["rr_depth"], child(settings.pointer, "rr_depth"), 0, 1024));
-  }
+std::unique_ptr<Integrator> PathIntegrator::create(const Params& p, const RenderSettings& render) {
+  return std::make_unique<PathIntegrator>(read_monte_carlo(p, render));
 }
 
 Color PathIntegrator::Li(const Ray& camera_ray, const Scene& scene, Sampler& sampler) const {

@@ -4,15 +4,13 @@
 
 namespace caustica {
 
-struct PathSettings {
-  int max_depth = 16;  // from the render block
-  int rr_depth = 3;    // Russian roulette starts after this many bounces
-  bool hide_emitters = false;  // directly visible emitters (and the environment) render black
-};
+// max_depth, rr_depth and hide_emitters: nothing of its own.
+using PathSettings = MonteCarloSettings;
 
 class PathIntegrator final : public Integrator {
  public:
-  PathIntegrator(const JsonSource& settings, const RenderSettings& render);
+  explicit PathIntegrator(const PathSettings& settings) : settings_(settings) {}
+  static std::unique_ptr<Integrator> create(const Params& p, const RenderSettings& render);
   Color Li(const Ray& ray, const Scene& scene, Sampler& sampler) const override;
   std::string name() const override { return "path"; }
   std::string describe() const override;

@@ -19,31 +19,18 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 }
 }  // namespace
 
-PhotonSettings PhotonSettings::read(const JsonSource& src, const RenderSettings& render, bool final_gather) {
-  JsonReader r(src.file, src.sources);
-  const auto& v = src.value;
-  if (final_gather) {
-    r.check_object(v, src.pointer, {"photons", "caustic_photons", "global_k", "caustic_k", "global_radius",
-                                    "caustic_radius", "gather_rays", "direct_samples", "irradiance_stride",
-                                    "glossy_threshold", "hide_emitters", "progressive", "alpha"});
-  } else {
-    r.check_object(v, src.pointer, {"photons", "caustic_photons", "global_k", "caustic_k", "global_radius",
-                                    "caustic_radius", "glossy_threshold", "hide_emitters", "progressive", "alpha"});
-  }
+PhotonSettings PhotonSettings::read(const Params& p, const RenderSettings& render, bool final_gather) {
   PhotonSettings s;
-  s.max_depth = render.max_depth;
-  auto integer = [&](const char* key, auto& field, int64_t lo, int64_t hi) {
-    if (v.contains(key)) field = static_cast<std::decay_t<decltype(field)>>(r.integer(v[key], child(src.pointer, key), lo, hi));
-  };
-  auto number = [&](const char* key, float& field) {
-    if (v.contains(key)) field = float(r.number_in(v[key], child(src.pointer, key), 0.0, 1e30));
-  };
+  static_cast<MonteCarloSettings&>(s) = read_monte_carlo(p, render);
   // photon-direct shows one photon map as it is, unless asked otherwise.
-  s.progressive = final_gather;
-  if (v.contains("progressive")) s.progressive = r.boolean(v["progressive"], child(src.pointer, "progressive"));
+  s.progressive = p.boolean("progressive", final_gather);
   // Progressive passes each trace their own maps: fewer photons per pass do better at equal
   // time there (BENCHMARKS.md, "Progressive photon mapping").
   if (s.progressive) s.photons = s.caustic_photons = kProgressivePhotons;
+  auto integer = [&](const char* key, auto& field, int64_t lo, int64_t hi) {
+    field = static_cast<std::decay_t<decltype(field)>>(p.integer(key, int64_t(field), lo, hi));
+  };
+  auto number = [&](const char* key, float& field) { field = float(p.number_in(key, field, 0.0, 1e30)); };
   integer("photons", s.photons, 0, int64_t(1) << 31);
   integer("caustic_photons", s.caustic_photons, 0, int64_t(1) << 31);
   integer("global_k", s.global_k, 1, 10000);
@@ -54,15 +41,17 @@ PhotonSettings PhotonSettings::read(const JsonSource& src, const RenderSettings&
   integer("direct_samples", s.direct_samples, 1, 1 << 16);
   integer("irradiance_stride", s.irradiance_stride, 0, 1 << 20);
   number("glossy_threshold", s.glossy_threshold);
-  if (v.contains("hide_emitters")) s.hide_emitters = r.boolean(v["hide_emitters"], child(src.pointer, "hide_emitters"));
-  if (v.contains("alpha")) {
-    s.alpha = float(r.number_in(v["alpha"], child(src.pointer, "alpha"), 1e-3, 0.999));
-  }
+  s.alpha = float(p.number_in("alpha", s.alpha, 1e-3, 0.999));
   return s;
 }
 
-PhotonIntegrator::PhotonIntegrator(const JsonSource& settings, const RenderSettings& render, bool final_gather)
-    : final_gather_(final_gather), settings_(PhotonSettings::read(settings, render, final_gather)) {}
+std::unique_ptr<Integrator> PhotonIntegrator::create(const Params& p, const RenderSettings& render) {
+  return std::make_unique<PhotonIntegrator>(PhotonSettings::read(p, render, true), true);
+}
+
+std::unique_ptr<Integrator> PhotonIntegrator::create_direct(const Params& p, const RenderSettings& render) {
+  return std::make_unique<PhotonIntegrator>(PhotonSettings::read(p, render, false), false);
+}
 
 void PhotonIntegrator::preprocess(const Scene& scene, const PreprocessContext& context) {
   check_photon_memory(settings_.photons + (final_gather_ ? settings_.caustic_photons : 0));

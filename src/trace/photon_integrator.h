@@ -6,7 +6,7 @@
 
 namespace caustica {
 
-struct PhotonSettings {
+struct PhotonSettings : MonteCarloSettings {
   // Stored in the global and caustic maps: per pass when progressive (kProgressivePhotons).
   size_t photons = 200000;
   size_t caustic_photons = 200000;
@@ -21,16 +21,14 @@ struct PhotonSettings {
   // Photons are stored, and eye paths stop to gather, on a diffuse lobe or a glossy lobe at
   // least this rough (microfacet alpha); smoother glossy surfaces are traced through.
   float glossy_threshold = 0.3f;
-  int max_depth = 16;        // from the render block
-  bool hide_emitters = false;  // directly visible emitters (and the environment) render black
   // Progressive photon mapping (Knaus and Zwicker 2011): every pass traces fresh maps of the
   // counts above and estimates within fixed radii that shrink as r_i^2 = r_1^2 prod (j + alpha) / (j + 1).
   // The default since it measured better at equal time at 10 to 120 s (BENCHMARKS.md).
   bool progressive = true;
   float alpha = 2.0f / 3.0f;
 
-  // Reads and validates the integrator block; unknown keys are errors.
-  static PhotonSettings read(const JsonSource& src, const RenderSettings& render, bool final_gather);
+  // Reads the integrator block (its keys were checked against the registry row).
+  static PhotonSettings read(const Params& p, const RenderSettings& render, bool final_gather);
 };
 
 struct PhotonStats {
@@ -42,7 +40,10 @@ struct PhotonStats {
 
 class PhotonIntegrator final : public Integrator {
  public:
-  PhotonIntegrator(const JsonSource& settings, const RenderSettings& render, bool final_gather);
+  PhotonIntegrator(const PhotonSettings& settings, bool final_gather) : final_gather_(final_gather), settings_(settings) {}
+  static std::unique_ptr<Integrator> create(const Params& p, const RenderSettings& render);
+  // `photon-direct`: no final gathering, the global map seen directly.
+  static std::unique_ptr<Integrator> create_direct(const Params& p, const RenderSettings& render);
   void preprocess(const Scene& scene, const PreprocessContext& context) override;
   bool progressive() const override { return settings_.progressive; }
   bool begin_pass(const Scene& scene, int pass, const PreprocessContext& context) override;
@@ -50,8 +51,9 @@ class PhotonIntegrator final : public Integrator {
   std::string name() const override { return final_gather_ ? "photon" : "photon-direct"; }
   std::string describe() const override;
 
-  const PhotonMap& global_map() const { return global_; }
-  const PhotonMap& caustic_map() const { return caustic_; }
+  bool supports_aov() const override { return true; }
+  const PhotonMap* global_map() const override { return &global_; }
+  const PhotonMap* caustic_map() const override { return &caustic_; }
   const PhotonSettings& settings() const { return settings_; }
   const PhotonStats& stats() const { return stats_; }
   // The estimate settings in use after preprocess (radii resolved).

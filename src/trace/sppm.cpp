@@ -13,19 +13,13 @@ namespace {
 thread_local std::vector<Neighbour> tls_scratch;
 }  // namespace
 
-SppmSettings SppmSettings::read(const JsonSource& src, const RenderSettings& render) {
-  JsonReader r(src.file, src.sources);
-  const auto& v = src.value;
-  r.check_object(v, src.pointer, {"photons", "radius", "alpha", "glossy_threshold", "hide_emitters"});
+SppmSettings SppmSettings::read(const Params& p, const RenderSettings& render) {
   SppmSettings s;
-  s.max_depth = render.max_depth;
-  if (v.contains("photons")) s.photons = size_t(r.integer(v["photons"], child(src.pointer, "photons"), 1, int64_t(1) << 31));
-  if (v.contains("radius")) s.radius = float(r.number_in(v["radius"], child(src.pointer, "radius"), 0.0, 1e30));
-  if (v.contains("alpha")) s.alpha = float(r.number_in(v["alpha"], child(src.pointer, "alpha"), 1e-3, 0.999));
-  if (v.contains("glossy_threshold")) {
-    s.glossy_threshold = float(r.number_in(v["glossy_threshold"], child(src.pointer, "glossy_threshold"), 0.0, 1e30));
-  }
-  if (v.contains("hide_emitters")) s.hide_emitters = r.boolean(v["hide_emitters"], child(src.pointer, "hide_emitters"));
+  static_cast<MonteCarloSettings&>(s) = read_monte_carlo(p, render);
+  s.photons = size_t(p.integer("photons", int64_t(s.photons), 1, int64_t(1) << 31));
+  s.radius = float(p.number_in("radius", s.radius, 0.0, 1e30));
+  s.alpha = float(p.number_in("alpha", s.alpha, 1e-3, 0.999));
+  s.glossy_threshold = float(p.number_in("glossy_threshold", s.glossy_threshold, 0.0, 1e30));
   return s;
 }
 
@@ -38,8 +32,9 @@ void SppmPixel::add_pass(size_t m, const Color& phi, float alpha) {
   n = n_new;
 }
 
-SppmIntegrator::SppmIntegrator(const JsonSource& settings, const RenderSettings& render)
-    : settings_(SppmSettings::read(settings, render)) {}
+std::unique_ptr<Integrator> SppmIntegrator::create(const Params& p, const RenderSettings& render) {
+  return std::make_unique<SppmIntegrator>(SppmSettings::read(p, render));
+}
 
 void SppmIntegrator::preprocess(const Scene& scene, const PreprocessContext&) {
   check_photon_memory(settings_.photons);

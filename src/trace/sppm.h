@@ -9,15 +9,13 @@
 
 namespace caustica {
 
-struct SppmSettings {
+struct SppmSettings : MonteCarloSettings {
   size_t photons = 100000;  // stored per pass
   float radius = 0;         // first radius of every pixel; 0: an even spread's disc of 50 photons
   float alpha = 2.0f / 3.0f;  // fraction of a pass's photons kept in the statistics
   float glossy_threshold = 0.3f;  // as `photon`: where photons are stored and eye paths stop
-  int max_depth = 16;       // from the render block
-  bool hide_emitters = false;
 
-  static SppmSettings read(const JsonSource& src, const RenderSettings& render);
+  static SppmSettings read(const Params& p, const RenderSettings& render);
 };
 
 // One pixel's statistics (pbrt-v3's SPPMPixel): radius, photon count N, and flux tau.
@@ -32,7 +30,8 @@ struct SppmPixel {
 
 class SppmIntegrator final : public Integrator {
  public:
-  SppmIntegrator(const JsonSource& settings, const RenderSettings& render);
+  explicit SppmIntegrator(const SppmSettings& settings) : settings_(settings) {}
+  static std::unique_ptr<Integrator> create(const Params& p, const RenderSettings& render);
   void preprocess(const Scene& scene, const PreprocessContext& context) override;
   bool progressive() const override { return true; }
   bool begin_pass(const Scene& scene, int pass, const PreprocessContext& context) override;

@@ -6,10 +6,8 @@
 
 namespace caustica {
 
-WhittedIntegrator::WhittedIntegrator(const JsonSource& settings, const RenderSettings& render)
-    : max_depth_(render.max_depth) {
-  JsonReader r(settings.file, settings.sources);
-  r.check_object(settings.value, settings.pointer, {});
+std::unique_ptr<Integrator> WhittedIntegrator::create(const Params&, const RenderSettings& render) {
+  return std::make_unique<WhittedIntegrator>(render.max_depth);
 }
 
 Color WhittedIntegrator::trace(const Ray& ray, const Scene& scene, Sampler& sampler, int depth) const {

@@ -6,7 +6,9 @@ namespace caustica {
 
 class WhittedIntegrator final : public Integrator {
  public:
-  WhittedIntegrator(const JsonSource& settings, const RenderSettings& render);
+  explicit WhittedIntegrator(int max_depth) : max_depth_(max_depth) {}
+  // No settings of its own; max_depth from the render block.
+  static std::unique_ptr<Integrator> create(const Params& p, const RenderSettings& render);
   Color Li(const Ray& ray, const Scene& scene, Sampler& sampler) const override;
   std::string name() const override { return "whitted"; }
   std::string describe() const override;
