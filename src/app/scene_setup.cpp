@@ -11,27 +11,22 @@
 namespace caustica {
 
 LoadedScene load_scene_with(const SceneOptions& options) {
-  LoadedScene loaded = load_scene(options.scene, options.mitsuba);
-  for (const std::string& w : loaded.warnings) std::cerr << "warning: " << w << "\n";
-  RenderSettings& rs = loaded.scene->render;
-  // A new size is a new film: a dimension not given keeps the film's (not a crop window's).
-  if (options.width || options.height) {
-    rs.width = options.width ? *options.width : loaded.scene->camera.film_width();
-    rs.height = options.height ? *options.height : loaded.scene->camera.film_height();
-  }
-  if (options.spp) rs.spp = *options.spp;
-  if (options.seed) rs.seed = *options.seed;
-  if (options.max_depth) rs.max_depth = *options.max_depth;
+  RenderOverrides overrides;
+  overrides.width = options.width;
+  overrides.height = options.height;
+  overrides.spp = options.spp;
+  overrides.seed = options.seed;
+  overrides.max_depth = options.max_depth;
   if (!options.accel.empty()) {
     AccelKind kind;
     if (!parse_accel(options.accel, kind)) throw InputError("--accel " + options.accel + ": expected bvh or embree");
-    if (kind == AccelKind::Embree && !embree_available()) {
+    if (choose_accel(kind) != kind) {
       throw InputError("--accel embree: this build of Caustica has no Embree (install libembree-dev and rebuild)");
     }
-    loaded.scene->set_accel(kind);
+    overrides.accel = kind;
   }
-  // A new size is a new film: any crop window of the scene is dropped.
-  if (options.width || options.height) loaded.scene->camera.set_resolution(rs.width, rs.height);
+  LoadedScene loaded = load_scene(options.scene, options.mitsuba, overrides);
+  for (const std::string& w : loaded.warnings) std::cerr << "warning: " << w << "\n";
   return loaded;
 }
 

@@ -23,6 +23,16 @@ bool embree_available() {
 
 AccelKind default_accel() { return embree_available() ? AccelKind::Embree : AccelKind::Bvh; }
 
+AccelKind choose_accel(std::optional<AccelKind> requested, bool* fell_back) {
+  if (fell_back) *fell_back = false;
+  if (!requested) return default_accel();
+  if (*requested == AccelKind::Embree && !embree_available()) {
+    if (fell_back) *fell_back = true;
+    return AccelKind::Bvh;
+  }
+  return *requested;
+}
+
 std::unique_ptr<Accelerator> make_accelerator(AccelKind kind, std::vector<Primitive> prims) {
   if (kind == AccelKind::Embree) {
 #ifdef CAUSTICA_EMBREE

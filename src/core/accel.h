@@ -2,6 +2,7 @@
 // (embree_accel.h, built with CAUSTICA_EMBREE). Hit::prim indexes primitives().
 #pragma once
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 #include "core/shape.h"
@@ -31,6 +32,10 @@ bool parse_accel(const std::string& name, AccelKind& kind);
 // Embree when this build has it, else our BVH.
 AccelKind default_accel();
 bool embree_available();
+// The one place that decides the backend: `requested`, or with none the default. Embree asked
+// for in a build without it gives our BVH and sets `fell_back` (the scene reader warns; the
+// command line's --accel embree is refused before it gets here).
+AccelKind choose_accel(std::optional<AccelKind> requested, bool* fell_back = nullptr);
 // Throws InputError when `kind` is Embree and this build lacks it.
 std::unique_ptr<Accelerator> make_accelerator(AccelKind kind, std::vector<Primitive> prims);
 

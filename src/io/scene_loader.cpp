@@ -20,6 +20,7 @@ namespace {
 struct Loader {
   JsonReader r;
   std::string base_dir;
+  RenderOverrides overrides;
   LoadedScene out;
   std::map<std::string, uint32_t> material_ids;
   std::vector<Primitive> prims;
@@ -29,6 +30,7 @@ struct Loader {
   void load(const json& doc) {
     r.check_object(doc, "", {"camera", "render", "integrator", "materials", "objects", "lights"});
     if (doc.contains("render")) read_render(doc["render"], "/render");
+    apply_overrides();
     read_camera(r.require(doc, "", "camera"), "/camera");
     if (doc.contains("integrator")) read_integrator(doc["integrator"], "/integrator");
     read_materials(r.require(doc, "", "materials"), "/materials");
@@ -59,11 +61,11 @@ struct Loader {
     if (j.contains("filter")) read_filter(j["filter"], child(p, "filter"));
     if (j.contains("accel")) {
       const std::string a = r.string(j["accel"], child(p, "accel"));
-      if (!parse_accel(a, rs.accel)) r.fail(child(p, "accel"), "unknown accel \"" + a + "\" (known: bvh, embree)");
-      if (rs.accel == AccelKind::Embree && !embree_available()) {
-        r.warn(child(p, "accel"), "this build has no Embree: our BVH casts the rays", out.warnings);
-        rs.accel = AccelKind::Bvh;
-      }
+      AccelKind kind;
+      if (!parse_accel(a, kind)) r.fail(child(p, "accel"), "unknown accel \"" + a + "\" (known: bvh, embree)");
+      bool fell_back = false;
+      rs.accel = choose_accel(kind, &fell_back);
+      if (fell_back) r.warn(child(p, "accel"), "this build has no Embree: our BVH casts the rays", out.warnings);
     }
     if (j.contains("crop")) {
       const json& c = j["crop"];
@@ -74,6 +76,21 @@ struct Loader {
         r.fail(cp, "the crop window reaches outside the " + std::to_string(rs.width) + "x" + std::to_string(rs.height) + " film");
       }
     }
+  }
+
+  // The command line's values over the render block's, before the camera and the accelerator
+  // are made.
+  void apply_overrides() {
+    RenderSettings& rs = scene().render;
+    if (overrides.width || overrides.height) {
+      rs.width = overrides.width.value_or(rs.width);
+      rs.height = overrides.height.value_or(rs.height);
+      crop_[2] = crop_[3] = 0;
+    }
+    if (overrides.spp) rs.spp = *overrides.spp;
+    if (overrides.seed) rs.seed = *overrides.seed;
+    if (overrides.max_depth) rs.max_depth = *overrides.max_depth;
+    if (overrides.accel) rs.accel = choose_accel(overrides.accel);
   }
 
   // "box", or {"type": "gaussian", "stddev": 0.5} or {"type": "tent", "radius": 1}.
@@ -472,7 +489,7 @@ struct Loader {
 }  // namespace
 
 LoadedScene parse_scene(const std::string& text, const std::string& file, const std::string& base_dir,
-                        const MitsubaOptions& mitsuba) {
+                        const MitsubaOptions& mitsuba, const RenderOverrides& overrides) {
   json doc;
   std::shared_ptr<const SourceMap> sources;
   std::vector<std::string> warnings;
@@ -484,7 +501,7 @@ LoadedScene parse_scene(const std::string& text, const std::string& file, const 
   } else {
     doc = parse_json_text(text, file);
   }
-  Loader loader{JsonReader(file, sources), base_dir, {}, {}, {}};
+  Loader loader{JsonReader(file, sources), base_dir, overrides, {}, {}, {}};
   loader.out.scene = std::make_unique<Scene>();
   loader.out.scene->source_file = file;
   loader.out.warnings = std::move(warnings);
@@ -496,7 +513,7 @@ LoadedScene parse_scene(const std::string& text, const std::string& file, const 
   return std::move(loader.out);
 }
 
-LoadedScene load_scene(const std::string& path, const MitsubaOptions& mitsuba) {
+LoadedScene load_scene(const std::string& path, const MitsubaOptions& mitsuba, const RenderOverrides& overrides) {
   std::error_code ec;
   if (!fs::exists(path, ec)) throw InputError(path + ": scene file not found");
   if (fs::is_directory(path, ec)) throw InputError(path + ": is a directory, not a scene file");
@@ -508,7 +525,7 @@ LoadedScene load_scene(const std::string& path, const MitsubaOptions& mitsuba) {
   ss << in.rdbuf();
   if (in.bad()) throw InputError(path + ": error while reading the scene file");
   const std::string base = fs::path(path).parent_path().string();
-  return parse_scene(ss.str(), path, base.empty() ? "." : base, mitsuba);
+  return parse_scene(ss.str(), path, base.empty() ? "." : base, mitsuba, overrides);
 }
 
 }  // namespace caustica

@@ -291,3 +291,33 @@ TEST_CASE("scene loader: an emissive material's objects emit through their area 
   CHECK(hit.light == -1);
   CHECK(is_black(plain.scene->emitted(hit, Vec3(0, 0, 1))));
 }
+
+TEST_CASE("scene loader: command-line overrides apply before the scene is built", "[io][scene_loader]") {
+  const std::string text = scene_text(R"([{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "white"}])",
+                                       kMaterials,
+                                       R"({"width": 40, "height": 30, "spp": 2, "crop": [10, 5, 20, 10], "accel": "embree"})");
+  // The scene as written: its crop window and the backend it asks for (or our BVH, warned).
+  LoadedScene plain = parse_scene(text, "o.json", ".");
+  CHECK(plain.scene->render.width == 20);
+  CHECK(plain.scene->camera.film_width() == 40);
+  CHECK(std::string(plain.scene->accel().name()) == (embree_available() ? "embree" : "bvh"));
+  RenderOverrides o;
+  o.width = 64;
+  o.spp = 5;
+  o.seed = 9;
+  o.max_depth = 3;
+  o.accel = AccelKind::Bvh;
+  LoadedScene over = parse_scene(text, "o.json", ".", {}, o);
+  const Scene& s = *over.scene;
+  // A new width is a new film: the height not given is the film's, the crop window is dropped.
+  CHECK(s.render.width == 64);
+  CHECK(s.render.height == 30);
+  CHECK(s.camera.film_width() == 64);
+  CHECK(s.camera.film_height() == 30);
+  CHECK(s.render.spp == 5);
+  CHECK(s.render.seed == 9);
+  CHECK(s.render.max_depth == 3);
+  // The accelerator was built for the backend asked for.
+  CHECK(s.render.accel == AccelKind::Bvh);
+  CHECK(std::string(s.accel().name()) == "bvh");
+}
