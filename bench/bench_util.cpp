@@ -95,7 +95,7 @@ const PathRays* cornell_bunny_path_rays() {
     scene.wrap_accel([&](std::unique_ptr<Accelerator> a) { return std::make_unique<RecordingAccel>(std::move(a), p->rays); });
     const auto integrator = create_integrator("path", p->loaded->integrator_settings, scene.render);
     RenderOptions options;
-    options.spp = 1;
+    options.job.passes = 1;
     options.quiet = true;
     RenderStats stats;
     {

@@ -59,7 +59,7 @@ void BM_PathRender(benchmark::State& state) {
   scene.set_accel(state.range(0) == 0 ? AccelKind::Bvh : AccelKind::Embree);
   const auto integrator = create_integrator("path", recorded->loaded->integrator_settings, scene.render);
   RenderOptions options;
-  options.spp = 1;
+  options.job.passes = 1;
   options.quiet = true;
   tbb::global_control c(tbb::global_control::max_allowed_parallelism, size_t(state.range(1)));
   RenderStats stats;
@@ -156,7 +156,7 @@ void BM_FinalGather(benchmark::State& state) {
   PhotonIntegrator integrator(settings, scene.render, true);
   integrator.preprocess(scene, {0, true});
   RenderOptions options;
-  options.spp = 1;
+  options.job.passes = 1;
   options.quiet = true;
   for (auto _ : state) {
     RenderStats stats;

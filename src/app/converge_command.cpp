@@ -137,8 +137,7 @@ int run_converge(const ConvergeArgs& args) {
       }
     };
     RenderOptions options;
-    options.time_limit = std::max(1e-3, args.time - pre);
-    options.seed = scene.render.seed;
+    options.job = render_job(scene.render, std::max(1e-3, args.time - pre));
     options.quiet = quiet;
     options.cluster = &cluster;
     // A mean image at the first pass past each checkpoint (on rank 0's clock).

@@ -122,8 +122,7 @@ int run_photons(const PhotonsArgs& args) {
     // The scene dimmed: direct light and mirrors only, at a quarter of its brightness.
     auto whitted = create_integrator("whitted", JsonSource{}, scene.render);
     RenderOptions options;
-    options.spp = 4;
-    options.seed = scene.render.seed;
+    options.job = {scene.render.seed, 4, 0.0};
     options.quiet = true;
     RenderStats stats;
     Image background = render_image(scene, *whitted, options, stats);

@@ -68,15 +68,14 @@ int run_render(const RenderArgs& args) {
   auto previous_int = std::signal(SIGINT, on_stop_signal);
   auto previous_term = std::signal(SIGTERM, on_stop_signal);
   const bool quiet = args.common.quiet || !cluster.root();  // one progress bar and report: rank 0's
-  PreprocessContext pre{rs.seed, quiet, &g_interrupted, cluster.rank()};
+  const RenderJob job = render_job(rs, args.time ? *args.time : 0.0);
+  PreprocessContext pre{job.seed, quiet, &g_interrupted, cluster.rank()};
   const auto t0 = std::chrono::steady_clock::now();
   integrator->preprocess(scene, pre);
   const double preprocess_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
   RenderOptions options;
-  options.spp = rs.spp;
-  options.time_limit = args.time ? *args.time : 0.0;
-  options.seed = rs.seed;
+  options.job = job;
   options.quiet = quiet;
   options.cluster = &cluster;
   options.cancel = &g_interrupted;

@@ -30,7 +30,7 @@ Image render_image(const Scene& scene, Integrator& integrator, const RenderOptio
   const int ts = options.tile_size;
   const int tiles_x = (w + ts - 1) / ts, tiles_y = (h + ts - 1) / ts;
   const int tile_count = tiles_x * tiles_y;
-  const bool timed = options.time_limit > 0;
+  const bool timed = options.job.time_budget > 0;
   // Exact sums (three per pixel): the same for any grouping of passes among threads and ranks.
   std::vector<FixedSum> sum(size_t(w) * h * 3, 0);
   const bool want_aov = options.aov && aovs;
@@ -41,8 +41,8 @@ Image render_image(const Scene& scene, Integrator& integrator, const RenderOptio
   const auto start = std::chrono::steady_clock::now();
   auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
   // This rank's passes of a fixed count: rank, rank + ranks, ... below spp.
-  const int own_passes = options.spp > rank ? (options.spp - rank + ranks - 1) / ranks : 0;
-  Progress progress("render", timed ? options.time_limit : double(own_passes) * tile_count,
+  const int own_passes = options.job.passes > rank ? (options.job.passes - rank + ranks - 1) / ranks : 0;
+  Progress progress("render", timed ? options.job.time_budget : double(own_passes) * tile_count,
                     options.quiet || !cluster.root());
   stats = RenderStats{};
   auto cancelled = [&] { return options.cancel && options.cancel->load(std::memory_order_relaxed); };
@@ -62,11 +62,11 @@ Image render_image(const Scene& scene, Integrator& integrator, const RenderOptio
           // Random streams follow the film pixel, so that a crop window renders the same
           // pixels as the whole film.
           const uint64_t film_pixel = uint64_t(y + crop_y) * film_w + uint64_t(x + crop_x);
-          Sampler sampler(hash_seed(film_pixel, uint64_t(pass), options.seed));
+          Sampler sampler(hash_seed(film_pixel, uint64_t(pass), options.job.seed));
           sampler.pixel = pixel;
           float aov[kA] = {};
           if (want_aov) sampler.aov = aov;
-          Vec2 jitter = pixel_jitter(film_pixel, uint64_t(pass), options.seed);
+          Vec2 jitter = pixel_jitter(film_pixel, uint64_t(pass), options.job.seed);
           // Other filters than the box place the sample around the pixel's centre.
           if (!scene.render.filter.is_box()) jitter = Vec2(0.5f) + scene.render.filter.sample(jitter);
           // The lens sample comes first from the pixel's stream, only when there is a lens.
@@ -128,14 +128,14 @@ Image render_image(const Scene& scene, Integrator& integrator, const RenderOptio
     options.on_pass(*fewest, elapsed(), mean_image(sums, counts));
   };
   const bool progressive = integrator.progressive();
-  const PreprocessContext pass_context{options.seed, options.quiet || !cluster.root(), options.cancel, rank};
+  const PreprocessContext pass_context{options.job.seed, options.quiet || !cluster.root(), options.cancel, rank};
   bool stopped = false;  // a progressive pass's preparation was cancelled
   if (!timed && !options.on_pass && !progressive) {
     // A fixed pass count: each tile runs a group of this rank's passes, with a barrier only
     // between groups (an interrupted render keeps every finished pass).
     constexpr int kGroup = 8;
-    for (int p0 = rank; p0 < options.spp && !cancelled(); p0 += kGroup * ranks) {
-      const int p1 = std::min(options.spp, p0 + kGroup * ranks);
+    for (int p0 = rank; p0 < options.job.passes && !cancelled(); p0 += kGroup * ranks) {
+      const int p1 = std::min(options.job.passes, p0 + kGroup * ranks);
       tbb::parallel_for(tbb::blocked_range<int>(0, tile_count), [&](const tbb::blocked_range<int>& range) {
         for (int tile = range.begin(); tile != range.end(); ++tile) render_tile(tile, p0, p1, ranks);
       });
@@ -146,7 +146,7 @@ Image render_image(const Scene& scene, Integrator& integrator, const RenderOptio
     // requested on any rank (Ctrl-C, SIGTERM), so that no rank renders a pass that is dropped.
     double last_round_start = 0;
     for (int round = 0;; ++round) {
-      if (!timed && round * ranks >= options.spp) break;
+      if (!timed && round * ranks >= options.job.passes) break;
       // A stop asked for on any rank; this call also waits for the slowest rank's last pass.
       if (cluster.any(cancelled() || stopped)) break;
       if (timed && round > 0) {
@@ -155,21 +155,21 @@ Image render_image(const Scene& scene, Integrator& integrator, const RenderOptio
         bool over = false;
         if (cluster.root()) {
           const double t = elapsed();
-          over = t + std::max(t / round, t - last_round_start) > options.time_limit;
+          over = t + std::max(t / round, t - last_round_start) > options.job.time_budget;
         }
         if (cluster.any(over)) break;
       }
       last_round_start = elapsed();
       const int pass = round * ranks + rank;
       // The last round of a fixed count may have no pass for some ranks.
-      const bool mine = timed || pass < options.spp;
+      const bool mine = timed || pass < options.job.passes;
       if (mine && progressive && !integrator.begin_pass(scene, pass, pass_context)) stopped = true;
       if (mine && !stopped) {
         tbb::parallel_for(tbb::blocked_range<int>(0, tile_count), [&](const tbb::blocked_range<int>& range) {
           for (int tile = range.begin(); tile != range.end(); ++tile) render_tile(tile, pass, pass + 1, 1);
         });
       }
-      if (timed) progress.set(std::min(elapsed(), options.time_limit));
+      if (timed) progress.set(std::min(elapsed(), options.job.time_budget));
       // Before the next round's go/stop: a cancel set in on_pass stops the next pass.
       if (options.on_pass) report_pass();
     }

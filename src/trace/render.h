@@ -8,10 +8,19 @@
 
 namespace caustica {
 
-struct RenderOptions {
-  int spp = 16;
-  double time_limit = 0;  // seconds; > 0 renders whole passes until the budget is spent
+// What one render is asked for: the seed of all its random numbers, its passes (one sample per
+// pixel each) and its time budget. A command makes one (render_job) and hands its seed to the
+// integrator's preprocess too.
+struct RenderJob {
   uint64_t seed = 0;
+  int passes = 16;         // samples per pixel
+  double time_budget = 0;  // seconds; > 0 renders whole passes until the budget is spent
+};
+// The scene's seed and samples per pixel (command-line overrides included), and a budget.
+inline RenderJob render_job(const RenderSettings& rs, double time_budget = 0) { return {rs.seed, rs.spp, time_budget}; }
+
+struct RenderOptions {
+  RenderJob job;
   bool quiet = false;
   int tile_size = 16;
   const std::atomic<bool>* cancel = nullptr;  // set (e.g. by SIGINT) to stop after this tile

@@ -85,8 +85,8 @@ Image render_loaded(LoadedScene& loaded) {
   auto integ = create_integrator(loaded.integrator_type, loaded.integrator_settings, scene.render);
   integ->preprocess(scene, {scene.render.seed, true});
   RenderOptions options;
-  options.spp = scene.render.spp;
-  options.seed = scene.render.seed;
+  options.job.passes = scene.render.spp;
+  options.job.seed = scene.render.seed;
   options.quiet = true;
   RenderStats stats;
   return render_image(scene, *integ, options, stats);

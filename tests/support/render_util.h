@@ -30,8 +30,8 @@ inline TestRender render_text(const std::string& scene_text, const std::string& 
     auto integ = create_integrator(integrator, settings, scene.render);
     integ->preprocess(scene, {seed, true});
     RenderOptions options;
-    options.spp = spp;
-    options.seed = seed;
+    options.job.passes = spp;
+    options.job.seed = seed;
     options.quiet = true;
     TestRender r;
     r.image = render_image(scene, *integ, options, r.stats);

@@ -14,8 +14,8 @@ Color render_mean(const std::string& text, uint64_t seed = 0) {
   auto integrator = create_integrator(loaded.integrator_type, loaded.integrator_settings, scene.render);
   integrator->preprocess(scene, {seed, true});
   RenderOptions options;
-  options.spp = scene.render.spp;
-  options.seed = seed;
+  options.job.passes = scene.render.spp;
+  options.job.seed = seed;
   options.quiet = true;
   RenderStats stats;
   const Image image = render_image(scene, *integrator, options, stats);

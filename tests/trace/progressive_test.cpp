@@ -57,10 +57,10 @@ Result run(const Job& job) {
   auto integrator = create_integrator(job.integrator, settings, scene.render);
   integrator->preprocess(scene, {job.seed, true, job.cancel});
   RenderOptions options;
-  options.spp = job.spp;
-  options.seed = job.seed;
+  options.job.passes = job.spp;
+  options.job.seed = job.seed;
   options.quiet = true;
-  options.time_limit = job.time_limit;
+  options.job.time_budget = job.time_limit;
   options.cancel = job.cancel;
   options.on_pass = job.on_pass;
   Result r;

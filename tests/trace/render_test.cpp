@@ -21,10 +21,10 @@ Rendered render_tiny(const std::string& integrator_name, int threads, uint64_t s
   tbb::global_control control(tbb::global_control::max_allowed_parallelism, size_t(threads));
   integrator->preprocess(scene, {seed, true});
   RenderOptions options;
-  options.spp = 8;
-  options.seed = seed;
+  options.job.passes = 8;
+  options.job.seed = seed;
   options.quiet = true;
-  options.time_limit = time_limit;
+  options.job.time_budget = time_limit;
   options.tile_size = 8;
   options.cancel = cancel;
   Rendered r;
