@@ -37,18 +37,6 @@ std::string convergence_csv(const std::vector<ConvergeRow>& rows, std::optional<
   return s.str();
 }
 
-static void write_text(const fs::path& path, const std::string& text) {
-  const fs::path tmp = path.parent_path() / ("." + path.filename().string() + ".tmp");
-  {
-    std::ofstream out(tmp, std::ios::binary);
-    out << text;
-    if (!out) throw InputError(path.string() + ": cannot write");
-  }
-  std::error_code ec;
-  fs::rename(tmp, path, ec);
-  if (ec) throw InputError(path.string() + ": cannot write: " + ec.message());
-}
-
 int run_converge(const ConvergeArgs& args) {
   // Under MPI each integrator's passes are split among the ranks; rank 0 measures and writes.
   const Cluster& cluster = Cluster::world();
@@ -188,7 +176,7 @@ int run_converge(const ConvergeArgs& args) {
   }
   if (!root) return 0;
   report.images.insert(report.images.end(), error_images.begin(), error_images.end());
-  write_text(fs::path(args.out_dir) / "convergence.csv", convergence_csv(rows, has_floor ? std::optional<double>(combined.floor) : std::nullopt));
+  write_file_atomically((fs::path(args.out_dir) / "convergence.csv").string(), convergence_csv(rows, has_floor ? std::optional<double>(combined.floor) : std::nullopt), "CSV");
   write_report(args.out_dir, report);
   if (!quiet) std::cout << "wrote " << (fs::path(args.out_dir) / "index.html").string() << "\n";
   return 0;

@@ -8,6 +8,7 @@
 #include <tbb/global_control.h>
 #include <unistd.h>
 #include "core/metrics.h"
+#include "io/atomic_file.h"
 #include "io/image_io.h"
 #include "trace/integrator.h"
 #include "trace/render.h"
@@ -68,35 +69,26 @@ void write_ply(const std::string& path, const std::vector<const PhotonMap*>& map
   if (!fs::is_directory(dir)) throw InputError(path + ": output folder " + dir.string() + " does not exist");
   size_t n = 0;
   for (const PhotonMap* m : maps) n += m->size();
-  const fs::path tmp = dir / ("." + fs::path(path).filename().string() + ".tmp" + std::to_string(getpid()));
-  std::FILE* f = std::fopen(tmp.c_str(), "wb");
-  if (!f) throw InputError(path + ": cannot write");
-  std::fprintf(f,
-               "ply\nformat binary_little_endian 1.0\ncomment caustica photon map\nelement vertex %zu\n"
-               "property float x\nproperty float y\nproperty float z\n"
-               "property float nx\nproperty float ny\nproperty float nz\n"
-               "property uchar red\nproperty uchar green\nproperty uchar blue\nend_header\n",
-               n);
-  bool ok = true;
+  std::string bytes = "ply\nformat binary_little_endian 1.0\ncomment caustica photon map\nelement vertex " +
+                      std::to_string(n) +
+                      "\nproperty float x\nproperty float y\nproperty float z\n"
+                      "property float nx\nproperty float ny\nproperty float nz\n"
+                      "property uchar red\nproperty uchar green\nproperty uchar blue\nend_header\n";
+  constexpr size_t kRecord = 27;
+  bytes.reserve(bytes.size() + n * kRecord);
   for (const PhotonMap* m : maps) {
-    for (uint32_t i = 0; i < m->size() && ok; ++i) {
+    for (uint32_t i = 0; i < m->size(); ++i) {
       const Photon& ph = (*m)[i];
       const Vec3 nrm = ph.surface_normal();
       const Color c = flux_colour(m->power(i));
-      unsigned char record[27];
+      unsigned char record[kRecord];
       const float floats[6] = {ph.position.x, ph.position.y, ph.position.z, nrm.x, nrm.y, nrm.z};
       std::memcpy(record, floats, 24);
       for (int k = 0; k < 3; ++k) record[24 + k] = static_cast<unsigned char>(std::lround(255.0f * std::clamp(c[k], 0.0f, 1.0f)));
-      ok = std::fwrite(record, sizeof record, 1, f) == 1;
+      bytes.append(reinterpret_cast<const char*>(record), kRecord);
     }
   }
-  ok = std::fclose(f) == 0 && ok;
-  std::error_code ec;
-  if (ok) fs::rename(tmp, path, ec);
-  if (!ok || ec) {
-    fs::remove(tmp, ec);
-    throw InputError(path + ": cannot write the point cloud");
-  }
+  write_file_atomically(path, bytes, "point cloud");
 }
 
 int run_photons(const PhotonsArgs& args) {

@@ -102,15 +102,19 @@ int run_render(const RenderArgs& args) {
     cluster.barrier();
     return interrupted_code;
   }
-  write_image(output, image, args.exposure);
-  if (args.aov && aovs.size() == 2) {
+  // The image and its AOVs appear together or not at all.
+  AtomicFileSet outputs;
+  write_image_to(outputs.add(output), image, args.exposure);
+  const std::filesystem::path out(output);
+  const std::string stem = (out.parent_path() / out.stem()).string();
+  const bool with_aovs = args.aov && aovs.size() == 2;
+  if (with_aovs) {
     // Beside the main output: photon counts (R global, G caustic) and estimate radii, linear EXR.
-    const std::filesystem::path out(output);
-    const std::string stem = (out.parent_path() / out.stem()).string();
-    write_image(stem + ".photons.exr", aovs[0]);
-    write_image(stem + ".radius.exr", aovs[1]);
-    if (!args.common.quiet) std::cout << "aov: " << stem << ".photons.exr, " << stem << ".radius.exr\n";
+    write_image_to(outputs.add(stem + ".photons.exr"), aovs[0]);
+    write_image_to(outputs.add(stem + ".radius.exr"), aovs[1]);
   }
+  outputs.commit("image");
+  if (with_aovs && !args.common.quiet) std::cout << "aov: " << stem << ".photons.exr, " << stem << ".radius.exr\n";
   cluster.barrier();
 
   if (!args.common.quiet) {

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <iterator>
 #include <unistd.h>
+#include "io/atomic_file.h"
 #include "io/json_reader.h"
 
 namespace caustica {
@@ -363,23 +364,6 @@ std::string plot_svg(const std::vector<ReportSeries>& series) {
   return svg + legend + "</svg>\n";
 }
 
-void write_atomically(const fs::path& target, const std::string& text) {
-  const fs::path tmp = target.parent_path() / ("." + target.filename().string() + ".tmp" + std::to_string(getpid()));
-  bool ok;
-  {
-    std::ofstream out(tmp, std::ios::binary);
-    ok = out.is_open() && out.write(text.data(), std::streamsize(text.size())).good();
-    out.close();
-    ok = ok && !out.fail();
-  }
-  std::error_code ec;
-  if (ok) fs::rename(tmp, target, ec);
-  if (!ok || ec) {
-    fs::remove(tmp, ec);
-    throw InputError(target.string() + ": cannot write the report" + (ok ? ": " + ec.message() : std::string()));
-  }
-}
-
 }  // namespace
 
 double convergence_slope(const ReportSeries& series) {
@@ -437,7 +421,7 @@ void write_report(const std::string& dir, const ReportData& data) {
   html += "<pre id=\"selftest\">selftest: the script did not run</pre>\n";
   html += kScript;
   html += "</body>\n</html>\n";
-  write_atomically(fs::path(dir) / "index.html", html);
+  write_file_atomically((fs::path(dir) / "index.html").string(), html, "report");
 }
 
 }  // namespace caustica

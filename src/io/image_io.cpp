@@ -2,13 +2,11 @@
 #include "io/image_io.h"
 #include <OpenImageIO/imageio.h>
 #include <algorithm>
-#include <atomic>
-#include <cerrno>
-#include <cstdio>
-#include <cstring>
 #include <filesystem>
 #include <unistd.h>
+#include <OpenImageIO/filesystem.h>
 #include "core/error.h"
+#include "io/atomic_file.h"
 
 namespace caustica {
 namespace fs = std::filesystem;
@@ -40,23 +38,28 @@ namespace {
 
 static_assert(sizeof(Color) == 3 * sizeof(float), "PFM rows are written straight from the pixels");
 
-bool write_pfm(const std::string& path, const Image& image) {
-  std::FILE* f = std::fopen(path.c_str(), "wb");
-  if (!f) return false;
-  bool ok = std::fprintf(f, "PF\n%d %d\n-1.0\n", image.width, image.height) > 0;
-  for (int y = image.height - 1; y >= 0 && ok; --y) {
-    ok = std::fwrite(&image.at(0, y), sizeof(Color), size_t(image.width), f) == size_t(image.width);
-  }
-  return std::fclose(f) == 0 && ok;
+// OpenImageIO 2.4 reads PFM but has no writer: the format is three header lines and
+// little-endian float rows, bottom row first.
+std::string encode_pfm(const Image& image) {
+  std::string out = "PF\n" + std::to_string(image.width) + " " + std::to_string(image.height) + "\n-1.0\n";
+  const size_t row = sizeof(Color) * size_t(image.width);
+  out.reserve(out.size() + row * size_t(image.height));
+  for (int y = image.height - 1; y >= 0; --y) out.append(reinterpret_cast<const char*>(&image.at(0, y)), row);
+  return out;
 }
 
-// Returns an error message, empty on success.
-std::string write_with_oiio(const std::string& path, const Image& image, float exposure, bool ldr) {
-  auto out = OIIO::ImageOutput::create(path);
+// Encodes through OpenImageIO into memory where its writer for the format can (so that our own
+// checked write puts the bytes on the disk: a full disk is then an error, never a short file),
+// else straight into the temporary. Returns an error message, empty on success.
+std::string write_with_oiio(AtomicFile& file, const Image& image, float exposure, bool ldr) {
+  auto out = OIIO::ImageOutput::create(file.path());
   if (!out) return "cannot create an image writer: " + OIIO::geterror();
   OIIO::ImageSpec spec(image.width, image.height, 3, ldr ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::FLOAT);
   spec.attribute("oiio:ColorSpace", ldr ? "sRGB" : "Linear");
-  if (!out->open(path, spec)) return out->geterror();
+  std::vector<unsigned char> encoded;
+  OIIO::Filesystem::IOVecOutput memory(encoded);
+  const bool in_memory = out->supports("ioproxy") && out->set_ioproxy(&memory);
+  if (!out->open(file.path(), spec)) return out->geterror();
   bool ok;
   if (ldr) {
     const float scale = std::exp2(exposure);
@@ -71,37 +74,28 @@ std::string write_with_oiio(const std::string& path, const Image& image, float e
     ok = out->write_image(OIIO::TypeDesc::FLOAT, image.pixels.data());
   }
   ok = out->close() && ok;
-  return ok ? std::string() : out->geterror();
+  if (!ok) return out->geterror();
+  if (in_memory) file.write(encoded.data(), encoded.size(), "image");
+  return std::string();
 }
 
 }  // namespace
 
+void write_image_to(AtomicFile& file, const Image& image, float exposure) {
+  const std::string ext = extension_of(file.target());
+  if (ext == ".pfm") {
+    file.write(encode_pfm(image), "image");
+    return;
+  }
+  const std::string error = write_with_oiio(file, image, exposure, ext == ".png");
+  if (!error.empty()) throw InputError(file.target() + ": cannot write the image: " + error);
+}
+
 void write_image(const std::string& path, const Image& image, float exposure) {
   check_output_path(path);
-  const std::string ext = extension_of(path);
-  static std::atomic<int> counter{0};
-  const fs::path target(path);
-  const fs::path tmp = target.parent_path() /
-      ("." + target.stem().string() + ".tmp" + std::to_string(getpid()) + "_" + std::to_string(counter++) + ext);
-  std::string error;
-  if (ext == ".pfm") {
-    // OpenImageIO 2.4 reads PFM but has no writer: the format is three header lines and
-    // little-endian float rows, bottom row first.
-    if (!write_pfm(tmp.string(), image)) error = std::strerror(errno);
-  } else {
-    error = write_with_oiio(tmp.string(), image, exposure, ext == ".png");
-  }
-  if (!error.empty()) {
-    std::error_code ec;
-    fs::remove(tmp, ec);
-    throw InputError(path + ": cannot write image: " + error);
-  }
-  std::error_code ec;
-  fs::rename(tmp, target, ec);
-  if (ec) {
-    fs::remove(tmp, ec);
-    throw InputError(path + ": cannot rename the finished image into place: " + ec.message());
-  }
+  AtomicFile file(path);
+  write_image_to(file, image, exposure);
+  file.commit("image");
 }
 
 Image read_image(const std::string& path) {

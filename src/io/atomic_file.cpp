@@ -1,0 +1,101 @@
+// Files written all or nothing: temporary, fsync, rename.
+#include "io/atomic_file.h"
+#include <atomic>
+#include <cerrno>
+#include <climits>
+#include <cstring>
+#include <fcntl.h>
+#include <filesystem>
+#include <unistd.h>
+#include "core/error.h"
+
+namespace caustica {
+namespace fs = std::filesystem;
+
+namespace {
+// Flushes the file at `path` (or a folder) to the disk; false with errno set on failure.
+bool fsync_path(const std::string& path, bool directory) {
+  const int fd = ::open(path.c_str(), directory ? O_RDONLY | O_DIRECTORY : O_WRONLY);
+  if (fd < 0) return false;
+  const bool ok = ::fsync(fd) == 0;
+  const int saved = errno;
+  ::close(fd);
+  errno = saved;
+  return ok;
+}
+
+std::string folder_of(const std::string& target) {
+  const fs::path dir = fs::path(target).parent_path();
+  return dir.empty() ? std::string(".") : dir.string();
+}
+}  // namespace
+
+AtomicFile::AtomicFile(std::string target) : target_(std::move(target)) {
+  // Refused before anything is written, so that a set of files fails as a whole.
+  if (fs::path(target_).filename().string().size() > NAME_MAX) {
+    throw InputError(target_ + ": the file name is longer than " + std::to_string(NAME_MAX) + " bytes");
+  }
+  static std::atomic<unsigned> counter{0};
+  const std::string name = ".caustica-" + std::to_string(::getpid()) + "-" + std::to_string(counter++) +
+                           fs::path(target_).extension().string().substr(0, 16);
+  temp_ = (fs::path(folder_of(target_)) / name).string();
+}
+
+AtomicFile::~AtomicFile() {
+  if (done_) return;
+  std::error_code ec;
+  fs::remove(temp_, ec);
+}
+
+void AtomicFile::fail(const std::string& what, const std::string& reason) {
+  std::error_code ec;
+  fs::remove(temp_, ec);
+  done_ = true;
+  throw InputError(target_ + ": cannot write the " + what + ": " + reason);
+}
+
+void AtomicFile::write(const void* bytes, size_t size, const std::string& what) {
+  std::FILE* f = std::fopen(temp_.c_str(), "wb");
+  if (!f) fail(what, std::strerror(errno));
+  const bool wrote = std::fwrite(bytes, 1, size, f) == size;
+  const int write_errno = errno;
+  const bool closed = std::fclose(f) == 0;
+  if (!wrote) fail(what, std::strerror(write_errno));
+  if (!closed) fail(what, std::strerror(errno));
+}
+
+void AtomicFile::sync(const std::string& what) {
+  if (!fsync_path(temp_, false)) fail(what, std::strerror(errno));
+}
+
+void AtomicFile::rename(const std::string& what) {
+  std::error_code ec;
+  fs::rename(temp_, target_, ec);
+  // The message is taken before the temporary's removal can overwrite the error.
+  if (ec) fail(what, "cannot rename it into place: " + ec.message());
+  done_ = true;
+  fsync_path(folder_of(target_), true);  // the new name on the disk too; best effort
+}
+
+void AtomicFile::commit(const std::string& what) {
+  sync(what);
+  rename(what);
+}
+
+void write_file_atomically(const std::string& target, const std::string& text, const std::string& what) {
+  AtomicFile file(target);
+  file.write(text, what);
+  file.commit(what);
+}
+
+AtomicFile& AtomicFileSet::add(const std::string& target) {
+  files_.push_back(std::make_unique<AtomicFile>(target));
+  return *files_.back();
+}
+
+void AtomicFileSet::commit(const std::string& what) {
+  for (auto& f : files_) f->sync(what);
+  for (auto& f : files_) f->rename(what);
+}
+
+}  // namespace caustica
