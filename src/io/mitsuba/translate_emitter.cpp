@@ -1,0 +1,92 @@
+// Mitsuba's emitters to our lights; the supported set is the light registry's rows that
+// Mitsuba knows by name, and `area` (an emitter inside a shape).
+#include "io/mitsuba/translator.h"
+#include <filesystem>
+#include "core/lights/registry.h"
+
+namespace caustica::mitsuba_translation {
+namespace fs = std::filesystem;
+
+namespace {
+// Mitsuba's `area` emitter has no row: it sits in a shape and becomes its material's emission.
+const std::set<std::string>& mitsuba_emitters() {
+  static const std::set<std::string> names = [] {
+    std::set<std::string> s = mitsuba_names(light_plugins());
+    s.insert("area");
+    return s;
+  }();
+  return names;
+}
+}  // namespace
+
+void Translator::emitter(const XmlObject& o) {
+  if (o.type == "area") throw InputError(o.where + ": an area emitter belongs inside a <shape>");
+  if (!mitsuba_emitters().count(o.type)) {
+    unsupported(o, "emitter", mitsuba_emitters(), "skipped");
+    return;
+  }
+  json& lights = out_.doc["lights"];
+  const std::string p = "/lights/" + std::to_string(lights.size());
+  note(p, o.where);
+  Props props(o);
+  json l = {{"type", o.type}};
+  const XmlProperty* tw = props.get("to_world");
+  const glm::dmat4 m = tw ? transform(*tw) : glm::dmat4(1.0);
+  auto emitted = [&](const char* key, const char* ours) {
+    const XmlProperty* e = props.get(key);
+    l[ours] = e ? color_json(*e, SpectrumUse::Emission)
+                : default_emission();
+    if (e) note(p + "/" + ours, e->where);
+  };
+  auto direction = [&](const glm::dvec3& d, const std::string& where) {
+    if (!(glm::length(d) > 0.0)) throw InputError(where + ": the direction is zero");
+    return vec(glm::normalize(d));
+  };
+  if (o.type == "point") {
+    const XmlProperty* pos = props.get("position");
+    if (pos && tw) throw InputError(pos->where + ": give position or to_world, not both");
+    l["position"] = vec(pos ? point(*pos) : glm::dvec3(m[3]));
+    emitted("intensity", "intensity");
+  } else if (o.type == "spot") {
+    l["position"] = vec(glm::dvec3(m[3]));
+    l["direction"] = direction(glm::dvec3(m * glm::dvec4(0, 0, 1, 0)), tw ? tw->where : o.where);
+    emitted("intensity", "intensity");
+    const XmlProperty* cut = props.get("cutoff_angle");
+    const XmlProperty* beam = props.get("beam_width");
+    const double cutoff = cut ? number(*cut) : 20.0;
+    l["cutoff_angle"] = cutoff;
+    l["beam_width"] = beam ? number(*beam) : 0.75 * cutoff;
+    if (cut) note(p + "/cutoff_angle", cut->where);
+    if (beam) note(p + "/beam_width", beam->where);
+  } else if (o.type == "directional") {
+    const XmlProperty* d = props.get("direction");
+    if (d && tw) throw InputError(d->where + ": give direction or to_world, not both");
+    l["direction"] = d ? direction(point(*d), d->where) : direction(glm::dvec3(m * glm::dvec4(0, 0, 1, 0)), tw ? tw->where : o.where);
+    emitted("irradiance", "irradiance");
+  } else if (o.type == "constant") {
+    emitted("radiance", "radiance");
+  } else {  // envmap
+    const XmlProperty* f = props.get("filename");
+    if (!f) throw InputError(o.where + ": missing <string name=\"filename\">");
+    l["filename"] = resolve(o, *f);
+    note(p + "/filename", f->where);
+    if (const XmlProperty* s = props.get("scale")) {
+      l["scale"] = number(*s);
+      note(p + "/scale", s->where);
+    }
+    if (tw) {
+      json r = json::array();
+      for (int row = 0; row < 3; ++row) r.push_back(json::array({m[0][row], m[1][row], m[2][row]}));
+      l["to_world"] = r;
+      note(p + "/to_world", tw->where);
+    }
+  }
+  if (o.type != "spot" && o.type != "point" && o.type != "directional" && o.type != "envmap" && tw) {
+    throw InputError(tw->where + ": a " + o.type + " emitter has no to_world");
+  }
+  refuse_unused(o, props);
+  for (const XmlChild& c : o.children) bad_child(o, c);
+  lights.push_back(l);
+}
+
+}  // namespace caustica::mitsuba_translation
