@@ -17,7 +17,16 @@ case $target in
   xml) exe=xml_fuzzer; dict=fuzz/xml.dict ;;
   mesh) exe=mesh_fuzzer; dict=fuzz/mesh.dict ;;
 esac
-cmake --build build-fuzz -j"${CAUSTICA_FUZZ_JOBS:-$(nproc)}" --target "$exe"
+cmake --build build-fuzz -j"${CAUSTICA_FUZZ_JOBS:-$(nproc)}" --target "$exe" caustica
+
+# The dictionary: the fixed tokens in fuzz/, and every plugin name and key from the registries
+# (`caustica plugins --dict`), so that a new plugin is fuzzed without editing a file.
+if [ "$target" != mesh ]; then
+  generated=build-fuzz/$target.dict
+  { cat "$dict"; echo "# from the registries: caustica plugins --dict $target";
+    ASAN_OPTIONS=detect_leaks=0 build-fuzz/caustica plugins --dict "$target"; } > "$generated"
+  dict=$generated
+fi
 
 # Seed corpus: the shipped and test inputs of that reader (the fuzzer adds what it finds to it).
 corpus=build-fuzz/corpus-$target artifacts=build-fuzz/artifacts-$target

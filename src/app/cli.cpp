@@ -7,6 +7,7 @@
 #include "app/compare_command.h"
 #include "app/converge_command.h"
 #include "app/photons_command.h"
+#include "app/plugins_command.h"
 #include "app/render_command.h"
 #include "io/json_reader.h"
 #include "trace/cluster.h"
@@ -161,6 +162,11 @@ int run_cli(int argc, char** argv) {
       ->required();
   photons->add_flag("--heatmap", pargs.heatmap, "PNG: photon density as a false-colour heat map");
 
+  PluginsArgs plugins_args;
+  CLI::App* plugins = app.add_subcommand("plugins", "List the BSDFs, textures, lights, shapes and integrators this build knows");
+  plugins->add_option("--dict", plugins_args.dict, "Print a libFuzzer dictionary for the json or xml scene reader instead")
+      ->check(CLI::IsMember({"json", "xml"}));
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -195,6 +201,7 @@ int run_cli(int argc, char** argv) {
       photons_flags.collect();
       return run_photons(pargs);
     }
+    if (plugins->parsed()) return run_plugins(plugins_args);
   } catch (const InputError& e) {
     return fail(std::string("error: ") + e.what(), 1);
   } catch (const std::exception& e) {

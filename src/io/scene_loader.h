@@ -26,6 +26,16 @@ struct LoadedScene {
   size_t triangle_count = 0, sphere_count = 0;
 };
 
+// Every plugin a scene file can name, family by family (bsdf, texture, light, shape), with
+// whether Mitsuba knows it by that name and the keys its block takes besides "type": for
+// `caustica plugins` and the fuzz dictionaries, taken from the registries.
+struct PluginListing {
+  std::string family, name;
+  bool mitsuba = false;
+  std::vector<std::string> keys;
+};
+std::vector<PluginListing> scene_plugins();
+
 // Throws InputError naming the file and the place in it. A file whose text starts with '<' is a
 // Mitsuba XML scene (read by its root element, not its extension); anything else is our JSON.
 LoadedScene load_scene(const std::string& path, const MitsubaOptions& mitsuba = {}, const RenderOverrides& overrides = {});

@@ -6,6 +6,7 @@
 #include "core/textures/registry.h"
 #include "io/scene_loader.h"
 #include "support/errors.h"
+#include "support/run.h"
 #include "support/temp_dir.h"
 
 using namespace caustica;
@@ -41,6 +42,13 @@ TEST_CASE("registries: the docs name every registered plugin", "[core][registry]
   check_documented(texture_plugins());
   REQUIRE(light_plugins().size() >= 5);
   check_documented(light_plugins());
+  // Shapes: every row of the table in scene-format.md (their Mitsuba names are translated).
+  const std::string format = doc("scene-format.md");
+  for (const PluginListing& p : scene_plugins()) {
+    if (p.family != "shape") continue;
+    INFO(p.name);
+    CHECK(format.find("### `\"" + p.name + "\"`") != std::string::npos);
+  }
 }
 
 TEST_CASE("registries: the BSDF table drives the JSON reader's errors and the Mitsuba translator", "[core][registry]") {
@@ -65,5 +73,28 @@ TEST_CASE("registries: the BSDF table drives the JSON reader's errors and the Mi
     const std::string e = test::error_of([&] { parse_scene(xml, "s.xml", "."); });
     if (p.mitsuba) CHECK(e.find("unsupported") == std::string::npos);
     else CHECK(e.find("unsupported") != std::string::npos);
+  }
+}
+
+TEST_CASE("registries: caustica plugins lists every row, and its fuzz dictionaries every name", "[core][registry]") {
+  test::TempDir dir;
+  const test::RunResult list = test::run_caustica("plugins", dir);
+  REQUIRE(list.exit_code == 0);
+  size_t rows = 0;
+  for (const BsdfPlugin& p : bsdf_plugins()) rows += list.out.find("bsdf " + std::string(p.name)) != std::string::npos;
+  for (const TexturePlugin& p : texture_plugins()) rows += list.out.find("texture " + std::string(p.name)) != std::string::npos;
+  for (const LightPlugin& p : light_plugins()) rows += list.out.find("light " + std::string(p.name)) != std::string::npos;
+  CHECK(rows == bsdf_plugins().size() + texture_plugins().size() + light_plugins().size());
+  for (const char* shape : {"shape sphere:", "shape triangle:", "shape quad:", "shape mesh:", "integrator photon:"}) {
+    CHECK(list.out.find(shape) != std::string::npos);
+  }
+  const test::RunResult json = test::run_caustica("plugins --dict json", dir);
+  const test::RunResult xml = test::run_caustica("plugins --dict xml", dir);
+  REQUIRE(json.exit_code == 0);
+  REQUIRE(xml.exit_code == 0);
+  for (const BsdfPlugin& p : bsdf_plugins()) {
+    INFO(p.name);
+    CHECK(json.out.find("\"\\\"" + std::string(p.name) + "\\\"\"") != std::string::npos);
+    if (p.mitsuba) CHECK(xml.out.find("\"<bsdf type=\\\"" + std::string(p.name) + "\\\">\"") != std::string::npos);
   }
 }

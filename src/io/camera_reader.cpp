@@ -1,0 +1,108 @@
+// The render block (size, samples, seed, depth, crop, backend, filter), the command line's
+// overrides over it, and the camera.
+#include "io/loader.h"
+
+namespace caustica::scene_loading {
+
+void Loader::read_render(const json& j, const std::string& p) {
+  r.check_object(j, p, {"width", "height", "spp", "seed", "max_depth", "crop", "accel", "filter"});
+  RenderSettings& rs = scene().render;
+  if (j.contains("width")) rs.width = int(r.integer(j["width"], child(p, "width"), 1, 16384));
+  if (j.contains("height")) rs.height = int(r.integer(j["height"], child(p, "height"), 1, 16384));
+  if (j.contains("spp")) rs.spp = int(r.integer(j["spp"], child(p, "spp"), 1, 1 << 24));
+  if (j.contains("seed")) rs.seed = uint64_t(r.integer(j["seed"], child(p, "seed"), 0, INT64_MAX));
+  if (j.contains("max_depth")) rs.max_depth = int(r.integer(j["max_depth"], child(p, "max_depth"), 1, 1024));
+  if (j.contains("filter")) read_filter(j["filter"], child(p, "filter"));
+  if (j.contains("accel")) {
+    const std::string a = r.string(j["accel"], child(p, "accel"));
+    AccelKind kind;
+    if (!parse_accel(a, kind)) r.fail(child(p, "accel"), "unknown accel \"" + a + "\" (known: bvh, embree)");
+    bool fell_back = false;
+    rs.accel = choose_accel(kind, &fell_back);
+    if (fell_back) r.warn(child(p, "accel"), "this build has no Embree: our BVH casts the rays", out.warnings);
+  }
+  if (j.contains("crop")) {
+    const json& c = j["crop"];
+    const std::string cp = child(p, "crop");
+    if (!c.is_array() || c.size() != 4) r.fail(cp, "expected [x, y, width, height] in pixels of the film");
+    for (size_t i = 0; i < 4; ++i) crop_[i] = int(r.integer(c[i], child(cp, i), i < 2 ? 0 : 1, 16384));
+    if (crop_[0] + crop_[2] > rs.width || crop_[1] + crop_[3] > rs.height) {
+      r.fail(cp, "the crop window reaches outside the " + std::to_string(rs.width) + "x" + std::to_string(rs.height) + " film");
+    }
+  }
+}
+
+void Loader::apply_overrides() {
+  RenderSettings& rs = scene().render;
+  if (overrides.width || overrides.height) {
+    rs.width = overrides.width.value_or(rs.width);
+    rs.height = overrides.height.value_or(rs.height);
+    crop_[2] = crop_[3] = 0;
+  }
+  if (overrides.spp) rs.spp = *overrides.spp;
+  if (overrides.seed) rs.seed = *overrides.seed;
+  if (overrides.max_depth) rs.max_depth = *overrides.max_depth;
+  if (overrides.accel) rs.accel = choose_accel(overrides.accel);
+}
+
+void Loader::read_filter(const json& j, const std::string& p) {
+  PixelFilter& f = scene().render.filter;
+  if (j.is_string()) {
+    const std::string t = r.string(j, p);
+    if (t == "box") f = PixelFilter::box();
+    else if (t == "gaussian") f = PixelFilter::gaussian(0.5f);
+    else if (t == "tent") f = PixelFilter::tent(1.0f);
+    else r.fail(p, "unknown filter \"" + t + "\" (known: box, gaussian, tent)");
+    return;
+  }
+  const std::string t = r.string(r.require(j, p, "type"), child(p, "type"));
+  if (t == "box") {
+    r.check_object(j, p, {"type"});
+    f = PixelFilter::box();
+  } else if (t == "gaussian") {
+    r.check_object(j, p, {"type", "stddev"});
+    f = PixelFilter::gaussian(j.contains("stddev") ? float(r.number_in(j["stddev"], child(p, "stddev"), 0.05, 16.0)) : 0.5f);
+  } else if (t == "tent") {
+    r.check_object(j, p, {"type", "radius"});
+    f = PixelFilter::tent(j.contains("radius") ? float(r.number_in(j["radius"], child(p, "radius"), 0.05, 16.0)) : 1.0f);
+  } else {
+    r.fail(child(p, "type"), "unknown filter \"" + t + "\" (known: box, gaussian, tent)");
+  }
+}
+
+void Loader::read_camera(const json& j, const std::string& p) {
+  r.check_object(j, p, {"position", "look_at", "up", "fov", "fov_axis", "mirror", "aperture_radius", "focus_distance"});
+  const Vec3 pos = r.vec3(r.require(j, p, "position"), child(p, "position"));
+  const Vec3 at = r.vec3(r.require(j, p, "look_at"), child(p, "look_at"));
+  const Vec3 up = j.contains("up") ? r.vec3(j["up"], child(p, "up")) : Vec3(0, 1, 0);
+  const float fov = j.contains("fov") ? float(r.number_in(j["fov"], child(p, "fov"), 0.1, 179.0)) : 45.0f;
+  if (glm::length(at - pos) <= 0.0f) r.fail(child(p, "look_at"), "look_at equals position");
+  if (glm::length(glm::cross(glm::normalize(at - pos), up)) < 1e-6f) {
+    r.fail(child(p, "up"), "up is parallel to the viewing direction (or zero)");
+  }
+  RenderSettings& rs = scene().render;
+  Camera& camera = scene().camera;
+  camera = Camera(pos, at, up, fov, rs.width, rs.height);
+  if (j.contains("fov_axis")) {
+    static const std::map<std::string, FovAxis> axes = {{"x", FovAxis::X}, {"y", FovAxis::Y}, {"smaller", FovAxis::Smaller},
+                                                        {"larger", FovAxis::Larger}, {"diagonal", FovAxis::Diagonal}};
+    const std::string a = r.string(j["fov_axis"], child(p, "fov_axis"));
+    const auto it = axes.find(a);
+    if (it == axes.end()) r.fail(child(p, "fov_axis"), "unknown fov_axis \"" + a + "\" (known: x, y, smaller, larger, diagonal)");
+    camera.set_fov(fov, it->second);
+  }
+  if (j.contains("mirror")) camera.set_mirror(r.boolean(j["mirror"], child(p, "mirror")));
+  if (j.contains("aperture_radius") || j.contains("focus_distance")) {
+    const float radius = float(r.number_in(r.require(j, p, "aperture_radius"), child(p, "aperture_radius"), 0.0, 1e30));
+    const double focus = r.number(r.require(j, p, "focus_distance"), child(p, "focus_distance"));
+    if (!(float(focus) > 0.0f)) r.fail(child(p, "focus_distance"), "focus_distance must be positive");
+    camera.set_lens(radius, float(focus));
+  }
+  if (crop_[2] > 0) {
+    camera.set_crop(crop_[0], crop_[1], crop_[2], crop_[3]);
+    rs.width = crop_[2];
+    rs.height = crop_[3];
+  }
+}
+
+}  // namespace caustica::scene_loading
