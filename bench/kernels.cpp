@@ -153,7 +153,8 @@ void BM_FinalGather(benchmark::State& state) {
   JsonSource settings;
   settings.value = {{"photons", 200000}, {"caustic_photons", 0}, {"gather_rays", 32},
                     {"irradiance_stride", state.range(0)}};
-  PhotonIntegrator integrator(settings, scene.render, true);
+  const std::unique_ptr<Integrator> made = create_integrator("photon", settings, scene.render);
+  Integrator& integrator = *made;
   integrator.preprocess(scene, {0, true});
   RenderOptions options;
   options.job.passes = 1;
