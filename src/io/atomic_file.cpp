@@ -1,11 +1,13 @@
 // Files written all or nothing: temporary, fsync, rename.
 #include "io/atomic_file.h"
-#include <atomic>
 #include <cerrno>
 #include <climits>
 #include <cstring>
 #include <fcntl.h>
 #include <filesystem>
+#include <mutex>
+#include <sys/stat.h>
+#include <stdlib.h>
 #include <unistd.h>
 #include "core/error.h"
 
@@ -35,10 +37,26 @@ AtomicFile::AtomicFile(std::string target) : target_(std::move(target)) {
   if (fs::path(target_).filename().string().size() > NAME_MAX) {
     throw InputError(target_ + ": the file name is longer than " + std::to_string(NAME_MAX) + " bytes");
   }
-  static std::atomic<unsigned> counter{0};
-  const std::string name = ".caustica-" + std::to_string(::getpid()) + "-" + std::to_string(counter++) +
-                           fs::path(target_).extension().string().substr(0, 16);
-  temp_ = (fs::path(folder_of(target_)) / name).string();
+  // Created here, exclusively (mkstemps), so that no other process, even on another machine
+  // sharing the folder, can pick the same name; the writers then replace its empty content.
+  const std::string ext = fs::path(target_).extension().string().substr(0, 16);
+  std::string name = (fs::path(folder_of(target_)) / (".caustica-XXXXXX" + ext)).string();
+  const int fd = ::mkstemps(name.data(), int(ext.size()));
+  if (fd < 0) {
+    done_ = true;
+    throw InputError(target_ + ": cannot create a file in " + folder_of(target_) + ": " + std::strerror(errno));
+  }
+  // mkstemps makes it private (0600); the target gets what any new file would (0666 less umask).
+  static std::mutex umask_mutex;
+  mode_t mask;
+  {
+    std::lock_guard<std::mutex> lock(umask_mutex);
+    mask = ::umask(0);
+    ::umask(mask);
+  }
+  ::fchmod(fd, 0666 & ~mask);
+  ::close(fd);
+  temp_ = name;
 }
 
 AtomicFile::~AtomicFile() {
@@ -52,6 +70,13 @@ void AtomicFile::fail(const std::string& what, const std::string& reason) {
   fs::remove(temp_, ec);
   done_ = true;
   throw InputError(target_ + ": cannot write the " + what + ": " + reason);
+}
+
+void AtomicFile::abandon() {
+  if (done_) return;
+  std::error_code ec;
+  fs::remove(temp_, ec);
+  done_ = true;
 }
 
 void AtomicFile::write(const void* bytes, size_t size, const std::string& what) {
@@ -95,7 +120,16 @@ AtomicFile& AtomicFileSet::add(const std::string& target) {
 
 void AtomicFileSet::commit(const std::string& what) {
   for (auto& f : files_) f->sync(what);
-  for (auto& f : files_) f->rename(what);
+  // What would stop a rename is refused before the first: a folder under a member's name.
+  for (auto& f : files_) {
+    std::error_code ec;
+    if (fs::is_directory(f->target(), ec)) {
+      for (auto& g : files_) g->abandon();
+      throw InputError(f->target() + ": cannot write the " + what + ": is a directory");
+    }
+  }
+  // The first member (a render's image) last: if a rename still fails, the image stays as it was.
+  for (auto it = files_.rbegin(); it != files_.rend(); ++it) (*it)->rename(what);
 }
 
 }  // namespace caustica

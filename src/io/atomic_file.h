@@ -29,6 +29,8 @@ class AtomicFile {
   void sync(const std::string& what);
   // The second half: the rename (after sync).
   void rename(const std::string& what);
+  // Gives up: the temporary is removed, the target left as it was.
+  void abandon();
 
  private:
   [[noreturn]] void fail(const std::string& what, const std::string& reason);
@@ -40,7 +42,8 @@ class AtomicFile {
 void write_file_atomically(const std::string& target, const std::string& text, const std::string& what);
 
 // A set of files that appear together or not at all (a render's image and its AOVs): each is
-// written to its temporary and flushed first; only when all are does any get its name.
+// written to its temporary and flushed first, and every target checked; only then does any get
+// its name, the first member last.
 class AtomicFileSet {
  public:
   AtomicFile& add(const std::string& target);

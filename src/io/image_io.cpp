@@ -52,12 +52,13 @@ std::string encode_pfm(const Image& image) {
 // checked write puts the bytes on the disk: a full disk is then an error, never a short file),
 // else straight into the temporary. Returns an error message, empty on success.
 std::string write_with_oiio(AtomicFile& file, const Image& image, float exposure, bool ldr) {
+  // The memory proxy outlives the writer, which may still close through it when destroyed.
+  std::vector<unsigned char> encoded;
+  OIIO::Filesystem::IOVecOutput memory(encoded);
   auto out = OIIO::ImageOutput::create(file.path());
   if (!out) return "cannot create an image writer: " + OIIO::geterror();
   OIIO::ImageSpec spec(image.width, image.height, 3, ldr ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::FLOAT);
   spec.attribute("oiio:ColorSpace", ldr ? "sRGB" : "Linear");
-  std::vector<unsigned char> encoded;
-  OIIO::Filesystem::IOVecOutput memory(encoded);
   const bool in_memory = out->supports("ioproxy") && out->set_ioproxy(&memory);
   if (!out->open(file.path(), spec)) return out->geterror();
   bool ok;

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 #include "core/bsdf/bsdf.h"
 #include "core/params.h"
+#include "core/registry.h"
 #include "core/textures/texture.h"
 #include "io/json_reader.h"
 
@@ -84,13 +85,8 @@ const Plugin& plugin_row(const JsonReader& r, const nlohmann::json& m, const std
                          const std::vector<const char*>& extra = {}, const std::string& note = "") {
   if (!m.is_object()) r.fail(p, "expected an object");
   const std::string type = r.string(r.require(m, p, "type"), child(p, "type"));
-  const Plugin* row = nullptr;
-  std::string known;
-  for (const Plugin& candidate : table) {
-    if (type == candidate.name) row = &candidate;
-    known += (known.empty() ? "" : ", ") + std::string(candidate.name);
-  }
-  if (!row) r.fail(child(p, "type"), "unknown " + family + " type \"" + type + "\" (known: " + known + note + ")");
+  const Plugin* row = find_plugin(table, type);
+  if (!row) r.fail(child(p, "type"), "unknown " + family + " type \"" + type + "\" (known: " + plugin_names(table) + note + ")");
   std::vector<const char*> keys = {"type"};
   keys.insert(keys.end(), row->keys.begin(), row->keys.end());
   keys.insert(keys.end(), extra.begin(), extra.end());

@@ -93,6 +93,7 @@ void Loader::read_light(const json& j, const std::string& p) {
   const LightPlugin& row = plugin_row(r, j, p, light_plugins(), "light", {"name"},
                                       "; area lights are objects with an emissive material");
   if (j.contains("name")) r.string(j["name"], child(p, "name"));
+  // Lights read no nested BSDFs: `nested` stays empty (and may die with this call).
   std::vector<std::unique_ptr<Bsdf>> nested;
   const PluginContext ctx{r, base_dir, nested, scene().textures, out.warnings};
   scene().lights.push_back(row.create(JsonParams(ctx, j, p)));

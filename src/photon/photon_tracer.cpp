@@ -38,6 +38,8 @@ class Emitter {
       : scene_(scene), caustic_(caustic), scene_radius_(0.5f * glm::length(scene.bounds().extent())) {
     for (const ObjectInfo& o : scene.objects) {
       const Bsdf& m = *scene.materials[o.material];
+      // Not at surfaces that scatter nothing (Mitsuba's null): photons pass through them.
+      if (m.flags() == 0) continue;
       if (!is_gather_surface(m, glossy_threshold) || m.has(kBsdfSpecular)) targets_.push_back({o.centre, o.radius});
     }
   }

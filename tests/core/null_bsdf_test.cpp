@@ -44,6 +44,14 @@ TEST_CASE("null: a ray passes through the surface to what lies behind it", "[cor
   REQUIRE(scene.intersect(Ray{Vec3(0.7f, 1.5f, 0.7f), Vec3(0, -1, 0)}, hit));
   CHECK(hit.p.y == Approx(0.0f).margin(1e-4));
   CHECK_FALSE(scene.occluded(Ray{Vec3(0.2f, 0.01f, 0.2f), Vec3(0, 1, 0), 1.9f}));
+  // Wrapped in twosided or in a fully opaque mask, it is still not there.
+  for (const char* wrapped : {R"({"type": "twosided", "bsdf": {"type": "null"}})",
+                              R"({"type": "mask", "opacity": 1, "bsdf": {"type": "null"}})"}) {
+    INFO(wrapped);
+    LoadedScene w = parse_scene(lamp_scene(wrapped), "wrapped.json", ".");
+    REQUIRE(w.scene->intersect(Ray{Vec3(0.7f, 1.5f, 0.7f), Vec3(0, -1, 0)}, hit));
+    CHECK(hit.p.y == Approx(0.0f).margin(1e-4));
+  }
   // The same quad with a diffuse material stops both.
   LoadedScene solid = parse_scene(lamp_scene(R"({"type": "diffuse"})"), "solid.json", ".");
   REQUIRE(solid.scene->intersect(Ray{Vec3(0.7f, 1.5f, 0.7f), Vec3(0, -1, 0)}, hit));

@@ -5,6 +5,7 @@
 #include <csignal>
 #include <filesystem>
 #include <sys/resource.h>
+#include <sys/stat.h>
 #include "io/atomic_file.h"
 #include "io/image_io.h"
 #include "support/errors.h"
@@ -71,7 +72,11 @@ TEST_CASE("atomic files: the content appears under the name, and no temporary is
              Contains("the file name is longer than 255 bytes"));
   // A missing folder: the error names the target, and says why.
   CHECK_THAT(test::error_of([&] { write_file_atomically(dir.file("no/such/b.txt"), "x", "text"); }),
-             Contains("no/such/b.txt: cannot write the text: No such file or directory"));
+             Contains("no/such/b.txt: ") && Contains("No such file or directory"));
+  // The file gets the permissions of any new file (not the temporary's private 0600).
+  const mode_t mask = ::umask(0);
+  ::umask(mask);
+  CHECK((fs::status(dir.file("a.txt")).permissions() & fs::perms::all) == fs::perms(0666 & ~mask));
   CHECK(entries(dir.path()) == 2);
 }
 
@@ -130,6 +135,16 @@ TEST_CASE("atomic files: a set appears together or not at all", "[io][atomic]") 
     FileSizeLimit limit(100);
     CHECK_FALSE(test::error_of([&] { set.add(dir.file("five.txt")).write(std::string(1000, '5'), "text"); }).empty());
   }
+  // A folder under the second member's name: found before any rename, so the first stays out.
+  fs::create_directory(dir.file("seven.txt"));
+  {
+    AtomicFileSet set;
+    set.add(dir.file("six.txt")).write("6", "text");
+    set.add(dir.file("seven.txt")).write("7", "text");
+    CHECK_THAT(test::error_of([&] { set.commit("text"); }), Contains("seven.txt: cannot write the text: is a directory"));
+  }
+  CHECK_FALSE(fs::exists(dir.file("six.txt")));
+  fs::remove(dir.file("seven.txt"));
   CHECK_FALSE(fs::exists(dir.file("three.txt")));
   CHECK_FALSE(fs::exists(dir.file("four.txt")));
   CHECK_FALSE(fs::exists(dir.file("five.txt")));

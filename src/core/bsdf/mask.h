@@ -26,8 +26,9 @@ class Mask final : public Bsdf {
   float glossy_roughness() const override { return nested_->glossy_roughness(); }
   Color albedo(const ShadingPoint& sp = {}) const override { return nested_->albedo(sp); }
   bool has_mask() const override { return true; }
+  // A masked null surface (or mask) lets through what either lets through.
   float opacity(const ShadingPoint& sp = {}) const override {
-    return std::clamp(average(opacity_.at(sp.uv)), 0.0f, 1.0f);
+    return std::clamp(average(opacity_.at(sp.uv)), 0.0f, 1.0f) * nested_->opacity(sp);
   }
 
  private:

@@ -19,6 +19,10 @@ class TwoSided final : public Bsdf {
   uint32_t flags() const override { return front_->flags() | back_->flags(); }
   float glossy_roughness() const override;
   Color albedo(const ShadingPoint& sp = {}) const override { return front_->albedo(sp); }
+  // A two-sided mask or null surface lets rays through as its front does (opacity() does not
+  // know the side a ray comes from; one BSDF on both sides is exact).
+  bool has_mask() const override { return front_->has_mask() || back_->has_mask(); }
+  float opacity(const ShadingPoint& sp = {}) const override { return front_->opacity(sp); }
 
  private:
   const Bsdf* front_;  // owned by the scene

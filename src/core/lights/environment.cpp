@@ -108,9 +108,10 @@ EmittedPhoton EnvironmentLight::sample_emission(const Vec2& u_pos, const Vec2& u
 }
 
 std::unique_ptr<Light> EnvironmentLight::create(const Params& p) {
+  const std::string path = p.file("filename", "environment map");
   Image image = p.image("filename", "environment map");
   for (const Color& c : image.pixels) {
-    if (!is_finite(c) || c.x < 0 || c.y < 0 || c.z < 0) p.fail("filename", "environment map " + p.string("filename", "") + " has negative or non-finite pixels");
+    if (!is_finite(c) || c.x < 0 || c.y < 0 || c.z < 0) p.fail("filename", "environment map " + path + " has negative or non-finite pixels");
   }
   const float scale = float(p.number_in("scale", 1.0, 0.0, 1e30));
   auto env = std::make_unique<EnvironmentLight>(std::move(image), scale, p.rotation("to_world"));

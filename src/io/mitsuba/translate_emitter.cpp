@@ -65,7 +65,9 @@ void Translator::emitter(const XmlObject& o) {
     emitted("irradiance", "irradiance");
   } else if (o.type == "constant") {
     emitted("radiance", "radiance");
-  } else {  // envmap
+  } else {
+    // A light registered for Mitsuba needs its properties mapped here first.
+    if (o.type != "envmap") throw InputError(o.where + ": emitter \"" + o.type + "\" has no Mitsuba translation yet");
     const XmlProperty* f = props.get("filename");
     if (!f) throw InputError(o.where + ": missing <string name=\"filename\">");
     l["filename"] = resolve(o, *f);
