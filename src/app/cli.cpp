@@ -2,7 +2,9 @@
 #include "app/cli.h"
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <cstdlib>
 #include <iostream>
 #include "app/compare_command.h"
 #include "app/converge_command.h"
@@ -15,6 +17,38 @@
 
 namespace caustica {
 namespace {
+
+// A number that is finite: NaN and infinities pass CLI11's range checks (every comparison with
+// NaN is false), so they are refused here.
+const CLI::Validator kFinite(
+    [](std::string& text) {
+      char* end = nullptr;
+      const double v = std::strtod(text.c_str(), &end);
+      return end != text.c_str() && std::isfinite(v) ? std::string() : "expected a finite number, not " + text;
+    },
+    "FINITE");
+
+// Number checks with messages a person can read (CLI11's own print a 300-digit bound).
+CLI::Validator number_check(const char* name, const char* expected, bool (*ok)(double)) {
+  return CLI::Validator(
+      [expected, ok](std::string& text) {
+        char* end = nullptr;
+        const double v = std::strtod(text.c_str(), &end);
+        return end != text.c_str() && *end == '\0' && ok(v) ? std::string() : std::string("expected ") + expected + ", not " + text;
+      },
+      name);
+}
+const CLI::Validator kNonNegative = number_check("NONNEGATIVE", "a number >= 0", [](double v) { return v >= 0.0; });
+const CLI::Validator kPositive = number_check("POSITIVE", "a number > 0", [](double v) { return v > 0.0; });
+// Digits only, at most 2^64 - 1 (strtoull alone would take "-1" as 2^64 - 1).
+const CLI::Validator kSeed(
+    [](std::string& text) {
+      errno = 0;
+      const bool digits = !text.empty() && text.find_first_not_of("0123456789") == std::string::npos;
+      if (digits) std::strtoull(text.c_str(), nullptr, 10);
+      return digits && errno == 0 ? std::string() : "expected a whole number from 0 to 2^64 - 1, not " + text;
+    },
+    "SEED");
 
 // An integrator setting's flag: "--photons" for "photons".
 std::string flag_of(const std::string& key) {
@@ -43,7 +77,7 @@ struct SceneFlags {
         ->group("Mitsuba scenes");
     if (with_spp) cmd->add_option("--spp", o.spp, "Samples per pixel")->check(CLI::Range(1, 1 << 24));
     cmd->add_option("--threads", o.threads, "Worker threads (default: all cores)")->check(CLI::Range(1, 1024));
-    cmd->add_option("--seed", o.seed, "Random seed");
+    cmd->add_option("--seed", o.seed, "Random seed (0 to 2^64 - 1)")->check(kSeed);
     cmd->add_option("--width", o.width, "Image width in pixels")->check(CLI::Range(1, 16384));
     cmd->add_option("--height", o.height, "Image height in pixels")->check(CLI::Range(1, 16384));
     cmd->add_option("--max-depth", o.max_depth, "Maximum path length")->check(CLI::Range(1, 1024));
@@ -69,7 +103,7 @@ struct SceneFlags {
         given[i] = cmd->add_option(flag, values[i], help)
                        ->group("Integrator settings")
                        ->type_name(s.kind == SettingKind::Integer ? "INT" : "FLOAT")
-                       ->check(CLI::NonNegativeNumber);
+                       ->check(kFinite & kNonNegative);
       }
     }
   }
@@ -91,6 +125,11 @@ struct SceneFlags {
       const double v = values[i];
       if (s.kind == SettingKind::Integer && v != std::floor(v)) {
         throw InputError(flag_of(s.key) + " " + std::to_string(v) + ": expected a whole number");
+      }
+      // Beyond 2^53 a double no longer holds every whole number (and past 2^63 none fits the
+      // settings' integers): no setting goes anywhere near it.
+      if (s.kind == SettingKind::Integer && v > 9007199254740992.0) {
+        throw InputError(flag_of(s.key) + " " + given[i]->as<std::string>() + ": out of range");
       }
       options->integrator_overrides.emplace_back(s.key, s.kind == SettingKind::Real ? nlohmann::json(v) : nlohmann::json(int64_t(v)));
     }
@@ -117,8 +156,9 @@ int run_cli(int argc, char** argv) {
   render->add_option("-o,--output", args.output, "Output image (.png, .exr, .hdr, .pfm); default: SCENE_NAME.png");
   render->add_option("--integrator", args.integrator, "Integrator: " + integrator_list());
   render->add_option("--time", args.time, "Time budget in seconds: render whole passes until it is spent")
-      ->check(CLI::PositiveNumber);
-  render->add_option("--exposure", args.exposure, "Exposure in stops for PNG output")->check(CLI::Range(-30.0, 30.0));
+      ->check(kFinite & kPositive);
+  render->add_option("--exposure", args.exposure, "Exposure in stops for PNG output")
+      ->check(kFinite & CLI::Range(-30.0, 30.0));
   render->add_option("--reference", args.reference, "Print error figures against this reference image at the end");
   render->add_flag("--aov", args.aov, "photon integrators: also write per-pixel photon count and gather radius images");
 
@@ -146,10 +186,10 @@ int run_cli(int argc, char** argv) {
       ->required();
   converge->add_option("--time", vargs.time, "Seconds per integrator (photon pass included)")
       ->required()
-      ->check(CLI::PositiveNumber);
+      ->check(kFinite & kPositive);
   converge->add_option("--checkpoints", vargs.checkpoints, "Seconds at which to record the error (default 1,2,4,...)")
       ->delimiter(',')
-      ->check(CLI::PositiveNumber);
+      ->check(kFinite & kPositive);
   converge->add_option("--out", vargs.out_dir, "Output folder (created if missing)")->required();
 
   PhotonsArgs pargs;

@@ -13,8 +13,25 @@ static OIIO::ImageBuf wrap(const Image& img) {
   return OIIO::ImageBuf(spec, const_cast<Color*>(img.pixels.data()));
 }
 
+namespace {
+// Error figures of an image with NaN or infinite pixels mean nothing (OpenImageIO's compare skips
+// them and reports a perfect match): say where the first one is.
+void check_finite(const Image& image, const std::string& name) {
+  for (size_t i = 0; i < image.pixels.size(); ++i) {
+    if (is_finite(image.pixels[i])) continue;
+    size_t bad = 0;
+    for (const Color& c : image.pixels) bad += !is_finite(c);
+    throw InputError(name + ": " + std::to_string(bad) + " pixel" + (bad == 1 ? " is" : "s are") +
+                     " NaN or infinite, the first at (" + std::to_string(i % size_t(image.width)) + ", " +
+                     std::to_string(i / size_t(image.width)) + "): no error figures for such an image");
+  }
+}
+}  // namespace
+
 ErrorMetrics compare_images(const Image& image, const Image& reference, const std::string& image_name,
                             const std::string& reference_name) {
+  check_finite(image, image_name);
+  check_finite(reference, reference_name);
   if (image.width != reference.width || image.height != reference.height) {
     throw InputError("image sizes differ: " + image_name + " is " + std::to_string(image.width) + "x" +
                      std::to_string(image.height) + ", " + reference_name + " is " + std::to_string(reference.width) +
@@ -43,6 +60,7 @@ ErrorMetrics compare_images(const Image& image, const Image& reference, const st
 
 Reference combine_references(const std::vector<Image>& renders, const std::vector<std::string>& names) {
   if (renders.empty()) throw InputError("no reference image");
+  for (size_t k = 0; k < renders.size(); ++k) check_finite(renders[k], names[k]);
   const Image& first = renders[0];
   for (size_t k = 1; k < renders.size(); ++k) {
     if (renders[k].width != first.width || renders[k].height != first.height) {

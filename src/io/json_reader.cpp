@@ -4,6 +4,7 @@
 #include <cctype>
 #include <cmath>
 #include <limits>
+#include <set>
 #include <sstream>
 
 namespace caustica {
@@ -47,10 +48,63 @@ void check_nesting_depth(const std::string& text, const std::string& file) {
 
 }  // namespace
 
+namespace {
+// Refuses a key given twice in one object (JSON allows it, the last one would silently win),
+// naming the object by its JSON pointer: the parser's callback sees every object, key and value.
+class DuplicateKeys {
+ public:
+  explicit DuplicateKeys(std::string file) : file_(std::move(file)) {}
+  bool operator()(int, nlohmann::json::parse_event_t event, nlohmann::json& parsed) {
+    using E = nlohmann::json::parse_event_t;
+    switch (event) {
+      case E::object_start: frames_.push_back({true, {}, {}, 0}); break;
+      case E::array_start: frames_.push_back({false, {}, {}, 0}); break;
+      case E::key: {
+        Frame& f = frames_.back();
+        const std::string key = parsed.get<std::string>();
+        if (!f.keys.insert(key).second) {
+          throw InputError(file_ + ": " + pointer() + ": key \"" + key + "\" is given twice (give each key once)");
+        }
+        f.last_key = key;
+        break;
+      }
+      case E::object_end:
+      case E::array_end:
+        frames_.pop_back();
+        element_done();
+        break;
+      case E::value: element_done(); break;
+    }
+    return true;
+  }
+
+ private:
+  struct Frame {
+    bool object;
+    std::set<std::string> keys;
+    std::string last_key;
+    size_t index;
+  };
+  void element_done() {
+    if (!frames_.empty() && !frames_.back().object) ++frames_.back().index;
+  }
+  // The pointer of the innermost open object: each enclosing frame's current key or index.
+  std::string pointer() const {
+    std::string p;
+    for (size_t i = 0; i + 1 < frames_.size(); ++i) {
+      p += "/" + (frames_[i].object ? frames_[i].last_key : std::to_string(frames_[i].index));
+    }
+    return p.empty() ? "the top level" : p;
+  }
+  std::string file_;
+  std::vector<Frame> frames_;
+};
+}  // namespace
+
 nlohmann::json parse_json_text(const std::string& text, const std::string& file) {
   check_nesting_depth(text, file);
   try {
-    return nlohmann::json::parse(text, nullptr, true, /*ignore_comments=*/true);
+    return nlohmann::json::parse(text, DuplicateKeys(file), true, /*ignore_comments=*/true);
   } catch (const nlohmann::json::parse_error& e) {
     // e.byte is the 1-based offset of the character where parsing stopped.
     // e.byte is just past the token that failed; step back to the token's first character.

@@ -1,6 +1,8 @@
 // The caustica executable end to end: renders, overrides, and bad input that must fail cleanly.
 #include <catch2/catch.hpp>
 #include <chrono>
+#include <cmath>
+#include <limits>
 #include <filesystem>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -107,6 +109,18 @@ TEST_CASE("cli: bad input exits non-zero with a located message and writes no im
       {"unknown integrator", good, "--integrator phton", "unknown integrator \"phton\" (known: "},
       {"output in a missing folder", good, "-o missing/dir/out.png", "does not exist"},
       {"unknown output type", good, "-o out.jpeg", "unknown image type"},
+      // Issue 23: keys given twice, and numbers that are not numbers or too large.
+      {"a key given twice", replaced("\"fov\": 50", "\"fov\": 40, \"fov\": 170"), "",
+       "bad.json: /camera: key \"fov\" is given twice"},
+      {"a material defined twice", replaced("\"lamp\": {", "\"white\": {\"type\": \"diffuse\"}, \"lamp\": {"), "",
+       "bad.json: /materials: key \"white\" is given twice"},
+      {"a key twice in an array's object", replaced("\"material\": \"white\"}", "\"material\": \"white\", \"material\": \"lamp\"}"),
+       "", "bad.json: /objects/0: key \"material\" is given twice"},
+      {"--exposure nan", good, "--exposure nan", "expected a finite number, not nan"},
+      {"--time nan", good, "--time nan", "expected a finite number, not nan"},
+      {"--time inf", good, "--time inf", "expected a finite number, not inf"},
+      {"--photons 1e30", good, "--integrator photon --photons 1e30", "--photons 1e30: out of range"},
+      {"--seed -1", good, "--seed -1", "--seed"},
   };
   for (const Case& c : cases) {
     SECTION(c.name) {
@@ -121,6 +135,32 @@ TEST_CASE("cli: bad input exits non-zero with a located message and writes no im
       CHECK(test::no_images_left(dir));
     }
   }
+}
+
+TEST_CASE("cli: compare refuses images with NaN or infinite pixels", "[app]") {
+  test::TempDir dir;
+  Image ref(4, 2), img(4, 2);
+  for (Color& c : ref.pixels) c = Color(0.5f);
+  for (Color& c : img.pixels) c = Color(0.5f);
+  img.at(3, 1) = Color(std::nanf(""), 0.5f, 0.5f);
+  write_image(dir.file("img.exr"), img);
+  write_image(dir.file("ref.exr"), ref);
+  auto r = run_caustica("compare img.exr ref.exr", dir);
+  CHECK(r.exit_code == 1);
+  CHECK(r.err.find("img.exr: 1 pixel is NaN or infinite, the first at (3, 1)") != std::string::npos);
+  // The same as a reference, and an all-NaN image.
+  r = run_caustica("compare ref.exr img.exr", dir);
+  CHECK(r.exit_code == 1);
+  CHECK(r.err.find("img.exr: 1 pixel is NaN or infinite") != std::string::npos);
+  for (Color& c : img.pixels) c = Color(std::numeric_limits<float>::infinity());
+  write_image(dir.file("inf.exr"), img);
+  r = run_caustica("compare inf.exr ref.exr --diff diff.png", dir);
+  CHECK(r.exit_code == 1);
+  CHECK(r.err.find("inf.exr: 8 pixels are NaN or infinite") != std::string::npos);
+  CHECK_FALSE(fs::exists(dir.file("diff.png")));
+  // Finite images still compare.
+  r = run_caustica("compare ref.exr ref.exr", dir);
+  CHECK(r.exit_code == 0);
 }
 
 TEST_CASE("cli: a missing scene file and a folder as scene", "[app]") {
