@@ -26,6 +26,27 @@ extern "C" void on_stop_signal(int sig) {
   g_interrupted.store(true);
 }
 
+// Installs on_stop_signal for SIGINT and SIGTERM until restore() or the end of the scope (an
+// error on the way out included).
+class StopSignals {
+ public:
+  StopSignals() : previous_int_(std::signal(SIGINT, on_stop_signal)), previous_term_(std::signal(SIGTERM, on_stop_signal)) {}
+  ~StopSignals() { restore(); }
+  StopSignals(const StopSignals&) = delete;
+  StopSignals& operator=(const StopSignals&) = delete;
+  void restore() {
+    if (restored_) return;
+    std::signal(SIGINT, previous_int_);
+    std::signal(SIGTERM, previous_term_);
+    restored_ = true;
+  }
+
+ private:
+  void (*previous_int_)(int);
+  void (*previous_term_)(int);
+  bool restored_ = false;
+};
+
 }  // namespace
 
 int run_render(const RenderArgs& args) {
@@ -65,8 +86,9 @@ int run_render(const RenderArgs& args) {
 
   g_interrupted = false;
   g_signal = 0;
-  auto previous_int = std::signal(SIGINT, on_stop_signal);
-  auto previous_term = std::signal(SIGTERM, on_stop_signal);
+  // Ctrl-C and SIGTERM stop the render (the passes done are kept) and, while the image is being
+  // written, wait for it: the handlers stay until the outputs are in place (issue 23).
+  StopSignals stop_signals;
   const bool quiet = args.common.quiet || !cluster.root();  // one progress bar and report: rank 0's
   const RenderJob job = render_job(rs, args.time ? *args.time : 0.0);
   PreprocessContext pre{job.seed, quiet, &g_interrupted, cluster.rank()};
@@ -86,19 +108,19 @@ int run_render(const RenderArgs& args) {
   // been interrupted while the others' was not).
   Image image = g_interrupted && !cluster.distributed() ? Image(rs.width, rs.height)
                                                         : render_image(scene, *integrator, options, stats, &aovs);
-  std::signal(SIGINT, previous_int);
-  std::signal(SIGTERM, previous_term);
   if (g_interrupted) stats.interrupted = true;
   // The shell's convention: 128 + the signal (130 for SIGINT, 143 for SIGTERM).
   const int interrupted_code = 128 + (g_signal.load() != 0 ? g_signal.load() : SIGINT);
   // Rank 0 writes the image of all ranks. The others wait until it has: a rank that exits with
   // an error code (an interrupted one does) makes mpirun kill the rest of the job.
   if (!cluster.root()) {
+    stop_signals.restore();  // nothing to write here
     cluster.barrier();
     return stats.interrupted ? interrupted_code : 0;
   }
   if (stats.interrupted && stats.passes == 0) {
     std::cerr << "interrupted before the first pass was complete: no image written\n";
+    stop_signals.restore();
     cluster.barrier();
     return interrupted_code;
   }
@@ -114,6 +136,7 @@ int run_render(const RenderArgs& args) {
     write_image_to(outputs.add(stem + ".radius.exr"), aovs[1]);
   }
   outputs.commit("image");
+  stop_signals.restore();
   if (with_aovs && !args.common.quiet) std::cout << "aov: " << stem << ".photons.exr, " << stem << ".radius.exr\n";
   cluster.barrier();
 

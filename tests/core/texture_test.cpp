@@ -140,6 +140,26 @@ TEST_CASE("textures: missing and unreadable files, unknown types and keys are er
   CHECK_THROWS_WITH(with(R"({"type": "noise"})"), Contains("unknown texture type \"noise\"") && Contains("checkerboard"));
   CHECK_THROWS_WITH(with(R"({"type": "checkerboard", "colour0": 1})"), Contains("/materials/m/reflectance/colour0"));
   CHECK_THROWS_WITH(with(R"({"type": "checkerboard", "to_uv": {"scale": [1, 2, 3]}})"), Contains("to_uv/scale"));
+  // Issue 23: decoded and checked once at load. A NaN texel (a correct-looking EXR) and a PNG cut
+  // short (its header intact) are errors naming the file, not black texels at render time.
+  Image nan_texels(4, 2);
+  for (Color& c : nan_texels.pixels) c = Color(0.5f);
+  nan_texels.at(2, 1) = Color(0.5f, std::nanf(""), 0.5f);
+  write_image(dir.file("nan.exr"), nan_texels);
+  CHECK_THROWS_WITH(with(R"({"type": "bitmap", "filename": "nan.exr"})"),
+                    Contains("/materials/m/reflectance/filename") && Contains("nan.exr: NaN or infinite texel at (2, 1)"));
+  Image noise(64, 64);
+  uint32_t s = 7;
+  for (Color& c : noise.pixels) {
+    s = s * 1664525u + 1013904223u;
+    c = Color(float(s >> 8) / float(1u << 24), 0.5f, 0.25f);
+  }
+  write_image(dir.file("whole.png"), noise);
+  const std::string png = test::read_text(dir.file("whole.png"));
+  dir.write("cut.png", png.substr(0, png.size() / 2));
+  CHECK_NOTHROW(with(R"({"type": "bitmap", "filename": "whole.png"})"));
+  CHECK_THROWS_WITH(with(R"({"type": "bitmap", "filename": "cut.png"})"),
+                    Contains("/materials/m/reflectance/filename") && Contains("cut.png: cannot decode the texture"));
   dir.write("bad.obj", "v nan 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
   CHECK_THROWS_WITH(load(dir, R"([{"type": "mesh", "file": "bad.obj", "material": "white"}])", kWhite),
                     Contains("bad.obj:1") && Contains("\"nan\" is not a finite number"));

@@ -1,6 +1,10 @@
 // Bitmap textures through OpenImageIO's TextureSystem.
 #include "core/textures/bitmap.h"
+#include <OpenImageIO/imageio.h>
 #include <OpenImageIO/texture.h>
+#include <algorithm>
+#include <cmath>
+#include <vector>
 #include "core/image.h"
 #include "core/error.h"
 
@@ -15,6 +19,30 @@ OIIO::TextureSystem* texture_system() {
     return t;
   }();
   return ts;
+}
+
+// Decodes the whole file once, a band of rows at a time (memory O(width)): a file that does not
+// decode, or holds NaN or infinite texels, is an error here at load, not black texels at every
+// lookup (each of which would try to decode it again).
+void check_texels(const std::string& path, const OIIO::ImageSpec& spec) {
+  auto in = OIIO::ImageInput::open(path);
+  if (!in) throw InputError(path + ": cannot decode the texture: " + OIIO::geterror());
+  const int w = spec.width, h = spec.height, n = spec.nchannels;
+  const int band = std::max(1, std::min(h, int((size_t(1) << 22) / (size_t(w) * size_t(n)))));
+  std::vector<float> rows(size_t(band) * size_t(w) * size_t(n));
+  for (int y0 = 0; y0 < h; y0 += band) {
+    const int y1 = std::min(h, y0 + band);
+    if (!in->read_scanlines(0, 0, y0 + spec.y, y1 + spec.y, 0, 0, n, OIIO::TypeDesc::FLOAT, rows.data())) {
+      throw InputError(path + ": cannot decode the texture: " + in->geterror());
+    }
+    for (size_t i = 0; i < size_t(y1 - y0) * size_t(w) * size_t(n); ++i) {
+      if (!std::isfinite(rows[i])) {
+        const size_t texel = i / size_t(n);
+        throw InputError(path + ": NaN or infinite texel at (" + std::to_string(texel % size_t(w)) + ", " +
+                         std::to_string(size_t(y0) + texel / size_t(w)) + ")");
+      }
+    }
+  }
 }
 
 float srgb_to_linear(float c) {
@@ -36,6 +64,7 @@ BitmapTexture::BitmapTexture(const std::string& path, TextureFilter filter, Text
   height_ = spec.height;
   channels_ = spec.nchannels;
   if (width_ <= 0 || height_ <= 0 || channels_ <= 0) throw InputError(path + ": the texture has no pixels");
+  check_texels(path, spec);
   // 8- and 16-bit images hold display-referred sRGB values unless declared raw.
   srgb_ = !raw && (spec.format == OIIO::TypeDesc::UINT8 || spec.format == OIIO::TypeDesc::UINT16);
   handle_ = ts->get_texture_handle(name);
