@@ -10,7 +10,7 @@ void Loader::read_render(const json& j, const std::string& p) {
   if (j.contains("width")) rs.width = int(r.integer(j["width"], child(p, "width"), 1, 16384));
   if (j.contains("height")) rs.height = int(r.integer(j["height"], child(p, "height"), 1, 16384));
   if (j.contains("spp")) rs.spp = int(r.integer(j["spp"], child(p, "spp"), 1, 1 << 24));
-  if (j.contains("seed")) rs.seed = uint64_t(r.integer(j["seed"], child(p, "seed"), 0, INT64_MAX));
+  if (j.contains("seed")) rs.seed = r.unsigned_integer(j["seed"], child(p, "seed"));
   if (j.contains("max_depth")) rs.max_depth = int(r.integer(j["max_depth"], child(p, "max_depth"), 1, 1024));
   if (j.contains("filter")) read_filter(j["filter"], child(p, "filter"));
   if (j.contains("accel")) {

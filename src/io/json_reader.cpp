@@ -244,12 +244,21 @@ double JsonReader::number_in(const nlohmann::json& v, const std::string& pointer
 
 int64_t JsonReader::integer(const nlohmann::json& v, const std::string& pointer, int64_t lo, int64_t hi) const {
   if (!v.is_number_integer()) fail(pointer, "expected an integer, found " + type_name(v));
-  const int64_t i = v.is_number_unsigned() && v.get<uint64_t>() > uint64_t(INT64_MAX) ? INT64_MAX : v.get<int64_t>();
-  if (i < lo || i > hi) {
-    // v.dump() prints the number as written (an unsigned value past INT64_MAX was clamped in i).
+  // An unsigned value past INT64_MAX is past every range here (it was clamped silently before).
+  const bool too_big = v.is_number_unsigned() && v.get<uint64_t>() > uint64_t(INT64_MAX);
+  const int64_t i = too_big ? INT64_MAX : v.get<int64_t>();
+  if (too_big || i < lo || i > hi) {
+    // v.dump() prints the number as written.
     fail(pointer, "value " + v.dump() + " is out of range [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
   }
   return i;
+}
+
+uint64_t JsonReader::unsigned_integer(const nlohmann::json& v, const std::string& pointer) const {
+  if (!v.is_number_integer() || (!v.is_number_unsigned() && v.get<int64_t>() < 0)) {
+    fail(pointer, "expected a whole number from 0 to 2^64 - 1, found " + (v.is_number() ? v.dump() : type_name(v)));
+  }
+  return v.get<uint64_t>();
 }
 
 bool JsonReader::boolean(const nlohmann::json& v, const std::string& pointer) const {

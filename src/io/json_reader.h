@@ -36,6 +36,7 @@ class JsonReader {
   double number(const nlohmann::json& v, const std::string& pointer) const;  // finite, fits a float
   double number_in(const nlohmann::json& v, const std::string& pointer, double lo, double hi) const;
   int64_t integer(const nlohmann::json& v, const std::string& pointer, int64_t lo, int64_t hi) const;
+  uint64_t unsigned_integer(const nlohmann::json& v, const std::string& pointer) const;  // 0 to 2^64 - 1
   bool boolean(const nlohmann::json& v, const std::string& pointer) const;
   std::string string(const nlohmann::json& v, const std::string& pointer) const;
   Vec3 vec3(const nlohmann::json& v, const std::string& pointer) const;

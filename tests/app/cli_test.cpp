@@ -121,6 +121,10 @@ TEST_CASE("cli: bad input exits non-zero with a located message and writes no im
       {"--time inf", good, "--time inf", "expected a finite number, not inf"},
       {"--photons 1e30", good, "--integrator photon --photons 1e30", "--photons 1e30: out of range"},
       {"--seed -1", good, "--seed -1", "--seed"},
+      {"a seed of 2^64 in the scene", replaced("\"spp\": 2", "\"spp\": 2, \"seed\": 18446744073709551616"), "",
+       "bad.json: /render/seed: expected a whole number from 0 to 2^64 - 1"},
+      {"a negative seed in the scene", replaced("\"spp\": 2", "\"spp\": 2, \"seed\": -1"), "",
+       "bad.json: /render/seed: expected a whole number from 0 to 2^64 - 1, found -1"},
   };
   for (const Case& c : cases) {
     SECTION(c.name) {

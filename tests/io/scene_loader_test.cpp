@@ -321,3 +321,15 @@ TEST_CASE("scene loader: command-line overrides apply before the scene is built"
   CHECK(s.render.accel == AccelKind::Bvh);
   CHECK(std::string(s.accel().name()) == "bvh");
 }
+
+TEST_CASE("scene loader: a seed takes every value from 0 to 2^64 - 1, none clamped", "[io][scene_loader]") {
+  const std::string objects = R"([{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "white"}])";
+  for (const char* seed : {"0", "9223372036854775807", "9223372036854775808", "18446744073709551615"}) {
+    INFO(seed);
+    LoadedScene loaded = parse_scene(scene_text(objects, kMaterials, std::string(R"({"seed": )") + seed + "}"), "s.json", ".");
+    CHECK(loaded.scene->render.seed == std::stoull(seed));
+  }
+  // Integers past INT64_MAX elsewhere are out of range, not clamped into it.
+  CHECK_THROWS_WITH(parse_scene(scene_text(objects, kMaterials, R"({"spp": 9223372036854775808})"), "s.json", "."),
+                    Contains("/render/spp: value 9223372036854775808 is out of range"));
+}
