@@ -50,13 +50,6 @@ const CLI::Validator kSeed(
     },
     "SEED");
 
-// An integrator setting's flag: "--photons" for "photons".
-std::string flag_of(const std::string& key) {
-  std::string flag = "--" + key;
-  std::replace(flag.begin(), flag.end(), '_', '-');
-  return flag;
-}
-
 // The options every scene-reading subcommand takes.
 struct SceneFlags {
   SceneOptions* options = nullptr;
@@ -93,7 +86,7 @@ struct SceneFlags {
     for (size_t i = 0; i < settings.size(); ++i) {
       const IntegratorSetting& s = settings[i];
       const std::string help = std::string(s.help) + " (" + integrators_reading(s.key) + ")";
-      const std::string flag = flag_of(s.key);
+      const std::string flag = integrator_flag(s.key);
       if (s.kind == SettingKind::Boolean) {
         given[i] = cmd->add_flag(flag, on[i], help)->group("Integrator settings");
         cmd->add_flag("--no-" + flag.substr(2), off[i], "The opposite of " + flag)
@@ -124,12 +117,12 @@ struct SceneFlags {
       if (given[i]->count() == 0) continue;
       const double v = values[i];
       if (s.kind == SettingKind::Integer && v != std::floor(v)) {
-        throw InputError(flag_of(s.key) + " " + std::to_string(v) + ": expected a whole number");
+        throw InputError(integrator_flag(s.key) + " " + std::to_string(v) + ": expected a whole number");
       }
       // Beyond 2^53 a double no longer holds every whole number (and past 2^63 none fits the
       // settings' integers): no setting goes anywhere near it.
       if (s.kind == SettingKind::Integer && v > 9007199254740992.0) {
-        throw InputError(flag_of(s.key) + " " + given[i]->as<std::string>() + ": out of range");
+        throw InputError(integrator_flag(s.key) + " " + given[i]->as<std::string>() + ": out of range");
       }
       options->integrator_overrides.emplace_back(s.key, s.kind == SettingKind::Real ? nlohmann::json(v) : nlohmann::json(int64_t(v)));
     }

@@ -67,8 +67,7 @@ std::unique_ptr<Integrator> integrator_for(const LoadedScene& loaded, const std:
     settings.value = nlohmann::json::object();
   }
   for (const auto& kv : options.integrator_overrides) {
-    std::string flag = "--" + kv.first;
-    std::replace(flag.begin(), flag.end(), '_', '-');
+    const std::string flag = integrator_flag(kv.first);
     // A flag applies to the integrators whose registry row lists its key.
     const IntegratorPlugin* row = find_integrator_plugin(type);
     const bool applies = row && std::find(row->keys.begin(), row->keys.end(), kv.first) != row->keys.end();
@@ -81,8 +80,7 @@ std::unique_ptr<Integrator> integrator_for(const LoadedScene& loaded, const std:
   for (const auto& kv : spec_settings) {
     for (const auto& flag : options.integrator_overrides) {
       if (flag.first == kv.first) {
-        std::string name = "--" + kv.first;
-        std::replace(name.begin(), name.end(), '_', '-');
+        std::string name = integrator_flag(kv.first);
         const IntegratorSetting* setting = find_integrator_setting(kv.first);
         if (setting && setting->kind == SettingKind::Boolean) name += "/--no-" + name.substr(2);
         throw InputError("integrator \"" + spec + "\" sets " + kv.first + " and so does " + name + ": give it once");

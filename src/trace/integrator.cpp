@@ -59,6 +59,12 @@ const IntegratorSetting* find_integrator_setting(const std::string& key) {
   return nullptr;
 }
 
+std::string integrator_flag(const std::string& key) {
+  std::string flag = "--" + key;
+  std::replace(flag.begin(), flag.end(), '_', '-');
+  return flag;
+}
+
 std::string integrators_reading(const std::string& key) {
   std::string out;
   for (const IntegratorPlugin& p : integrator_plugins()) {

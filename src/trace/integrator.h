@@ -81,6 +81,8 @@ struct IntegratorSetting {
 };
 const std::vector<IntegratorSetting>& integrator_settings();
 const IntegratorSetting* find_integrator_setting(const std::string& key);
+// A setting's command-line flag: "--caustic-photons" for "caustic_photons".
+std::string integrator_flag(const std::string& key);
 // The names of the integrators whose row lists `key`, e.g. "photon, photon-direct".
 std::string integrators_reading(const std::string& key);
 
