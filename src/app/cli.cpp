@@ -6,11 +6,13 @@
 #include <cmath>
 #include <cstdlib>
 #include <iostream>
+#include <new>
 #include "app/compare_command.h"
 #include "app/converge_command.h"
 #include "app/photons_command.h"
 #include "app/plugins_command.h"
 #include "app/render_command.h"
+#include "core/memory.h"
 #include "io/json_reader.h"
 #include "trace/cluster.h"
 #include "trace/integrator.h"
@@ -237,6 +239,12 @@ int run_cli(int argc, char** argv) {
     if (plugins->parsed()) return run_plugins(plugins_args);
   } catch (const InputError& e) {
     return fail(std::string("error: ") + e.what(), 1);
+  } catch (const std::bad_alloc&) {
+    // What check_memory() did not foresee (it checks the large allocations before they are made).
+    const MemoryLimit limit = memory_limit();
+    return fail("error: out of memory" + (limit.what.empty() ? std::string() : " (" + limit.what + " leaves " + format_gib(double(limit.bytes)) + ")") +
+                    "; try a smaller image, fewer photons or fewer threads",
+                1);
   } catch (const std::exception& e) {
     return fail(std::string("internal error: ") + e.what(), 2);
   }

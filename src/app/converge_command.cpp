@@ -82,6 +82,7 @@ int run_converge(const ConvergeArgs& args) {
   }
   const bool quiet = args.common.quiet || !root;
 
+  check_film_memory(scene.render.width, scene.render.height, false);
   const int threads = thread_count(args.common);
   tbb::global_control control(tbb::global_control::max_allowed_parallelism, size_t(threads));
   std::vector<ConvergeRow> rows;

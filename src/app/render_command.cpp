@@ -81,6 +81,7 @@ int run_render(const RenderArgs& args) {
                    << " aov=" << args.aov;
   check_ranks_agree(args.common, command_settings.str(), {integrator.get()});
 
+  check_film_memory(rs.width, rs.height, args.aov);
   const int threads = thread_count(args.common);
   tbb::global_control control(tbb::global_control::max_allowed_parallelism, size_t(threads));
 
@@ -165,6 +166,10 @@ int run_render(const RenderArgs& args) {
       << "\n";
     s << "bad samples (NaN/Inf/negative, dropped): " << stats.bad_samples << "\n";
     std::cout << s.str();
+  }
+  if (stats.bad_samples > 0 && cluster.root()) {
+    std::cerr << "warning: " << stats.bad_samples << " of " << stats.samples
+              << " camera samples were NaN, infinite or negative and were left out: the image is darker where they fell\n";
   }
   if (!args.reference.empty()) {
     const ErrorMetrics m = compare_images(image, reference, output, args.reference);

@@ -14,6 +14,16 @@ using Color = glm::vec3;
 constexpr float kPi = 3.14159265358979323846f;
 constexpr float kInvPi = 1.0f / kPi;
 constexpr float kInfinity = std::numeric_limits<float>::infinity();
+// How far from the origin a scene may reach. Past about 1.84e18 Embree refuses (and asserts on)
+// a ray's origin, and well before that single-precision geometry overflows: a triangle's normal
+// is the length of a cross product, a fourth power of the coordinates (finite up to about 2e9),
+// and an area light's power its area times its radiance. Scene readers refuse positions, radii
+// and apertures beyond this bound.
+constexpr float kMaxCoordinate = 1e9f;
+// The largest colour a scene may give (a radiance, an intensity, an irradiance, a texel of an
+// environment map times its scale). The film sums samples exactly up to 1e12 each
+// (core/fixed_sum.h), so what a light emits, times a path's throughput, stays well inside.
+constexpr float kMaxColor = 1e9f;
 
 inline float max_component(const Vec3& v) { return std::max(v.x, std::max(v.y, v.z)); }
 inline float luminance(const Color& c) { return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b; }

@@ -27,6 +27,8 @@ class Params {
   virtual Color color(const std::string& key, const Color& fallback) const = 0;  // non-negative
   virtual Color color(const std::string& key) const = 0;                         // required
   virtual Vec3 vec3(const std::string& key) const = 0;                           // required
+  // A position (required), each coordinate within kMaxCoordinate of the origin's.
+  virtual Vec3 point(const std::string& key) const = 0;
   // A colour or a texture block (the texture is kept alive by the scene).
   virtual ColorParam texture(const std::string& key, const Color& fallback) const = 0;
   // A file named by `key` (required), relative to the scene's folder; an error when it is not

@@ -72,9 +72,11 @@ void Loader::read_filter(const json& j, const std::string& p) {
 
 void Loader::read_camera(const json& j, const std::string& p) {
   r.check_object(j, p, {"position", "look_at", "up", "fov", "fov_axis", "mirror", "aperture_radius", "focus_distance"});
-  const Vec3 pos = r.vec3(r.require(j, p, "position"), child(p, "position"));
-  const Vec3 at = r.vec3(r.require(j, p, "look_at"), child(p, "look_at"));
-  const Vec3 up = j.contains("up") ? r.vec3(j["up"], child(p, "up")) : Vec3(0, 1, 0);
+  const Vec3 pos = r.point(r.require(j, p, "position"), child(p, "position"));
+  const Vec3 at = r.point(r.require(j, p, "look_at"), child(p, "look_at"));
+  Vec3 up = j.contains("up") ? r.vec3(j["up"], child(p, "up")) : Vec3(0, 1, 0);
+  // Scaled to its largest component: the length of a vector past about 1.8e19 overflows a float.
+  if (max_component(glm::abs(up)) > 0.0f) up /= max_component(glm::abs(up));
   const float fov = j.contains("fov") ? float(r.number_in(j["fov"], child(p, "fov"), 0.1, 179.0)) : 45.0f;
   if (glm::length(at - pos) <= 0.0f) r.fail(child(p, "look_at"), "look_at equals position");
   if (glm::length(glm::cross(glm::normalize(at - pos), up)) < 1e-6f) {
@@ -93,7 +95,7 @@ void Loader::read_camera(const json& j, const std::string& p) {
   }
   if (j.contains("mirror")) camera.set_mirror(r.boolean(j["mirror"], child(p, "mirror")));
   if (j.contains("aperture_radius") || j.contains("focus_distance")) {
-    const float radius = float(r.number_in(r.require(j, p, "aperture_radius"), child(p, "aperture_radius"), 0.0, 1e30));
+    const float radius = float(r.number_in(r.require(j, p, "aperture_radius"), child(p, "aperture_radius"), 0.0, kMaxCoordinate));
     const double focus = r.number(r.require(j, p, "focus_distance"), child(p, "focus_distance"));
     if (!(float(focus) > 0.0f)) r.fail(child(p, "focus_distance"), "focus_distance must be positive");
     camera.set_lens(radius, float(focus));

@@ -6,6 +6,7 @@
 #include <unistd.h>
 #include <OpenImageIO/filesystem.h>
 #include "core/error.h"
+#include "core/memory.h"
 #include "io/atomic_file.h"
 
 namespace caustica {
@@ -101,11 +102,23 @@ void write_image(const std::string& path, const Image& image, float exposure) {
 
 Image read_image(const std::string& path) {
   std::error_code ec;
-  if (!fs::is_regular_file(path, ec)) throw InputError(path + ": image file not found");
+  const fs::file_status status = fs::status(path, ec);
+  if (!fs::exists(status)) throw InputError(path + ": image file not found");
+  if (fs::is_directory(status)) throw InputError(path + ": is a folder, not an image file");
+  if (!fs::is_regular_file(status)) throw InputError(path + ": is not a regular file (a device or a pipe?), not an image file");
   auto in = OIIO::ImageInput::open(path);
   if (!in) throw InputError(path + ": cannot read image: " + OIIO::geterror());
   const OIIO::ImageSpec& spec = in->spec();
   if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0) throw InputError(path + ": image has no pixels");
+  const double values = double(spec.width) * double(spec.height) * double(spec.nchannels);
+  // PFM and the other PNM formats hold their values uncompressed (at least a byte each): one that
+  // declares more than it holds is refused before anything is allocated.
+  if (std::string(in->format_name()) == "pnm" && values * double(spec.format.size()) > double(fs::file_size(path, ec))) {
+    throw InputError(path + ": the image declares " + std::to_string(spec.width) + " x " + std::to_string(spec.height) +
+                     " pixels, more than the file holds");
+  }
+  check_memory(values * sizeof(float) + double(spec.width) * double(spec.height) * sizeof(Color),
+               path + " (" + std::to_string(spec.width) + " x " + std::to_string(spec.height) + " pixels)");
   std::vector<float> data(size_t(spec.width) * spec.height * spec.nchannels);
   if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, data.data())) {
     throw InputError(path + ": cannot read image: " + in->geterror());

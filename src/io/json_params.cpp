@@ -91,6 +91,7 @@ Color JsonParams::color(const std::string& key, const Color& fallback) const {
 Color JsonParams::color(const std::string& key) const { return r_.color(r_.require(m_, p_, key.c_str()), at(key)); }
 
 Vec3 JsonParams::vec3(const std::string& key) const { return r_.vec3(r_.require(m_, p_, key.c_str()), at(key)); }
+Vec3 JsonParams::point(const std::string& key) const { return r_.point(r_.require(m_, p_, key.c_str()), at(key)); }
 
 Image JsonParams::image(const std::string& key, const std::string& what) const {
   const std::string path = file(key, what);

@@ -37,6 +37,7 @@ class JsonParams final : public Params {
   Color color(const std::string& key, const Color& fallback) const override;
   Color color(const std::string& key) const override;
   Vec3 vec3(const std::string& key) const override;
+  Vec3 point(const std::string& key) const override;
   Image image(const std::string& key, const std::string& what) const override;
   glm::mat3 rotation(const std::string& key) const override;
   ColorParam texture(const std::string& key, const Color& fallback) const override;

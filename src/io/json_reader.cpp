@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <set>
 #include <sstream>
@@ -278,6 +279,27 @@ Vec3 JsonReader::vec3(const nlohmann::json& v, const std::string& pointer) const
               static_cast<float>(number(v[2], child(pointer, 2))));
 }
 
+std::string out_of_scene_range(const std::string& what) {
+  char limit[32];
+  std::snprintf(limit, sizeof limit, "%g", double(kMaxCoordinate));
+  return what + " is out of range: positions and sizes must lie within " + limit +
+         " of the origin (the renderer computes in single precision)";
+}
+
+std::string format_number(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", value);
+  return text;
+}
+
+Vec3 JsonReader::point(const nlohmann::json& v, const std::string& pointer) const {
+  const Vec3 x = vec3(v, pointer);
+  for (int i = 0; i < 3; ++i) {
+    if (std::abs(x[i]) > kMaxCoordinate) fail(child(pointer, i), out_of_scene_range("coordinate " + format_number(x[i])));
+  }
+  return x;
+}
+
 Vec2 JsonReader::vec2(const nlohmann::json& v, const std::string& pointer, const std::string& expected) const {
   if (!v.is_array() || v.size() != 2) fail(pointer, "expected " + expected);
   return Vec2(static_cast<float>(number(v[0], child(pointer, 0))), static_cast<float>(number(v[1], child(pointer, 1))));
@@ -285,12 +307,13 @@ Vec2 JsonReader::vec2(const nlohmann::json& v, const std::string& pointer, const
 
 Color JsonReader::color(const nlohmann::json& v, const std::string& pointer) const {
   if (v.is_number()) {
-    const float c = static_cast<float>(number_in(v, pointer, 0.0, 1e9));
+    const float c = static_cast<float>(number_in(v, pointer, 0.0, kMaxColor));
     return Color(c);
   }
   const Vec3 c = vec3(v, pointer);
   for (int i = 0; i < 3; ++i) {
     if (c[i] < 0.0f) fail(child(pointer, size_t(i)), "colour components must not be negative");
+    if (c[i] > kMaxColor) fail(child(pointer, size_t(i)), "value " + format_number(c[i]) + " is out of range [0, " + format_number(kMaxColor) + "]");
   }
   return c;
 }

@@ -40,6 +40,8 @@ class JsonReader {
   bool boolean(const nlohmann::json& v, const std::string& pointer) const;
   std::string string(const nlohmann::json& v, const std::string& pointer) const;
   Vec3 vec3(const nlohmann::json& v, const std::string& pointer) const;
+  // A position: three numbers within ±kMaxCoordinate (where single-precision rays are valid).
+  Vec3 point(const nlohmann::json& v, const std::string& pointer) const;
   // Two numbers; `expected` names them in the message, e.g. "[u, v]".
   Vec2 vec2(const nlohmann::json& v, const std::string& pointer, const std::string& expected) const;
   Color color(const nlohmann::json& v, const std::string& pointer) const;  // non-negative
@@ -58,6 +60,10 @@ struct JsonSource {
   std::string pointer;  // JSON pointer of `value` inside the file
   std::shared_ptr<const SourceMap> sources;  // set when the scene was translated (Mitsuba XML)
 };
+
+// The message for a position or size past kMaxCoordinate: `what` names it ("coordinate 2e+18").
+std::string out_of_scene_range(const std::string& what);
+std::string format_number(double value);  // %g
 
 inline std::string child(const std::string& pointer, const std::string& key) { return pointer + "/" + key; }
 inline std::string child(const std::string& pointer, size_t index) {

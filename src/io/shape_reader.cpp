@@ -66,6 +66,9 @@ void Loader::add_object(std::vector<Primitive> shapes, uint32_t mat, const json&
     r.warn(p, "object has no usable triangles and is left out", out.warnings);
     return;
   }
+  Bounds b;
+  for (const Primitive& s : shapes) b.extend(s.bounds());
+  check_reach(std::max(max_component(glm::abs(b.lo)), max_component(glm::abs(b.hi))), p);
   int32_t light = -1;
   for (Primitive& s : shapes) {
     s.material = mat;
@@ -83,8 +86,6 @@ void Loader::add_object(std::vector<Primitive> shapes, uint32_t mat, const json&
     info.centre = shapes[0].p0;
     info.radius = shapes[0].radius();
   } else {
-    Bounds b;
-    for (const Primitive& s : shapes) b.extend(s.bounds());
     info.centre = b.centre();
     for (const Primitive& s : shapes) {
       for (const Vec3& v : {s.p0, s.p1, s.p2}) info.radius = std::max(info.radius, glm::length(v - info.centre));
@@ -98,7 +99,13 @@ void Loader::add_object(std::vector<Primitive> shapes, uint32_t mat, const json&
   scene().objects.push_back(info);
 }
 
+void Loader::check_reach(float reach, const std::string& p) const {
+  if (!(reach <= kMaxCoordinate)) r.fail(p, out_of_scene_range("the object reaches " + format_number(reach) + ", which"));
+}
+
 void Loader::add_triangle(std::vector<Primitive>& shapes, const Vec3& a, const Vec3& b, const Vec3& c, const std::string& p, const TriangleAttributes* attributes) {
+  // Before the area test: a triangle out of range is an error, not a degenerate one.
+  check_reach(std::max({max_component(glm::abs(a)), max_component(glm::abs(b)), max_component(glm::abs(c))}), p);
   const float area2 = glm::length(glm::cross(b - a, c - a));
   if (!(area2 > 0.0f) || !std::isfinite(area2)) {
     ++degenerate_;

@@ -2,11 +2,9 @@
 #include "photon/photon_tracer.h"
 #include <algorithm>
 #include <chrono>
-#include <iomanip>
-#include <sstream>
-#include <unistd.h>
 #include <tbb/parallel_for.h>
 #include "core/error.h"
+#include "core/memory.h"
 #include "core/sampler.h"
 #include "photon/gather.h"
 
@@ -266,14 +264,7 @@ void check_photon_memory(size_t photons) {
   // then the kd-tree index and the precomputed-irradiance points (a quarter as many, each with
   // a record, an index entry and a grid entry, normal and cells: PointGrid).
   const double bytes_per_photon = 52.0 + sizeof(Photon) + 8.0 + 0.25 * (sizeof(Photon) + 8.0 + 60.0);
-  const double need = double(photons) * bytes_per_photon;
-  const double have = double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGE_SIZE));
-  if (have > 0 && need > 0.8 * have) {
-    std::ostringstream m;
-    m << std::fixed << std::setprecision(1) << photons << " photons would need about " << need / (1 << 30)
-      << " GiB of memory; this machine has " << have / (1 << 30) << " GiB (use fewer photons)";
-    throw InputError(m.str());
-  }
+  check_memory(double(photons) * bytes_per_photon, "the photon maps of " + std::to_string(photons) + " photons", " (use fewer photons)");
 }
 
 PhotonPassResult trace_photons(const Scene& scene, const PhotonPassSettings& settings) {

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include "core/memory.h"
 #include "trace/progress.h"
 
 namespace caustica {
@@ -21,6 +22,15 @@ Vec2 pixel_jitter(uint64_t pixel, uint64_t sample, uint64_t seed) {
   return Vec2(float(x - std::floor(x)), float(y - std::floor(y)));
 }
 
+void check_film_memory(int width, int height, bool aov) {
+  // Per pixel: three exact sums, a pass count, the mean image and the writer's copy of it; with
+  // AOVs their sums and two more images.
+  const double per_pixel = 3.0 * sizeof(FixedSum) + sizeof(int) + 2.0 * sizeof(Color) +
+                           (aov ? Sampler::kAovCount * sizeof(FixedSum) + 2.0 * sizeof(Color) : 0.0);
+  check_memory(double(width) * double(height) * per_pixel,
+               "a " + std::to_string(width) + " x " + std::to_string(height) + " image", " (render a smaller image, or a crop)");
+}
+
 Image render_image(const Scene& scene, Integrator& integrator, const RenderOptions& options,
                    RenderStats& stats, std::vector<Image>* aovs) {
   const Cluster alone;
@@ -31,6 +41,7 @@ Image render_image(const Scene& scene, Integrator& integrator, const RenderOptio
   const int tiles_x = (w + ts - 1) / ts, tiles_y = (h + ts - 1) / ts;
   const int tile_count = tiles_x * tiles_y;
   const bool timed = options.job.time_budget > 0;
+  check_film_memory(w, h, options.aov && aovs);
   // Exact sums (three per pixel): the same for any grouping of passes among threads and ranks.
   std::vector<FixedSum> sum(size_t(w) * h * 3, 0);
   const bool want_aov = options.aov && aovs;

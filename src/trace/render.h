@@ -51,6 +51,11 @@ struct RenderStats {
 // Sub-pixel position of sample `sample` of a pixel: a per-pixel rotation of the R2 sequence.
 Vec2 pixel_jitter(uint64_t pixel, uint64_t sample, uint64_t seed);
 
+// Refuses (InputError) a film whose sums, image and output copy would not fit in the memory this
+// process may take (core/memory.h); render_image checks it too, but a caller can check before a
+// long preprocess.
+void check_film_memory(int width, int height, bool aov);
+
 // With options.aov, `aovs` receives the per-pixel mean of the AOVs: two images, the first
 // holding Sampler::aov[0..1] in red and green, the second aov[2..3].
 Image render_image(const Scene& scene, Integrator& integrator, const RenderOptions& options,

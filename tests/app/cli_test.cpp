@@ -7,6 +7,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 #include <nlohmann/json.hpp>
+#include "core/accel.h"
 #include "io/image_io.h"
 #include "support/run.h"
 
@@ -125,6 +126,21 @@ TEST_CASE("cli: bad input exits non-zero with a located message and writes no im
        "bad.json: /render/seed: expected a whole number from 0 to 2^64 - 1"},
       {"a negative seed in the scene", replaced("\"spp\": 2", "\"spp\": 2, \"seed\": -1"), "",
        "bad.json: /render/seed: expected a whole number from 0 to 2^64 - 1, found -1"},
+      // Issue 23: positions and sizes where Embree would abort on the rays (beyond about 1.84e18).
+      {"a camera at 2e18", replaced("\"position\": [0, 1, 3]", "\"position\": [0, 1, 2e18]"), "--integrator photon",
+       "bad.json: /camera/position/2: coordinate 2e+18 is out of range: positions and sizes must lie within 1e+09 of the origin"},
+      {"a camera at 1e30 (not \"up is parallel\")", replaced("\"position\": [0, 1, 3]", "\"position\": [0, 1, 1e30]"), "",
+       "bad.json: /camera/position/2: coordinate 1e+30 is out of range"},
+      {"a point light at 2e18", replaced("\"objects\": [", "\"lights\": [{\"type\": \"point\", \"position\": [2e18, 1, 0], \"intensity\": 1}],\n  \"objects\": ["),
+       "--integrator photon", "bad.json: /lights/0/position/0: coordinate 2e+18 is out of range"},
+      {"an aperture of 1e30", replaced("\"fov\": 50", "\"fov\": 50, \"aperture_radius\": 1e30, \"focus_distance\": 3"), "",
+       "bad.json: /camera/aperture_radius: value 1e+30 is out of range [0, 1e+09]"},
+      {"a sphere of radius 1e19", replaced("{\"type\": \"quad\", \"origin\": [-2, 0, -2], \"edge1\": [0, 0, 4], \"edge2\": [4, 0, 0],",
+                                           "{\"type\": \"sphere\", \"center\": [0, 0, 0], \"radius\": 1e19,"),
+       "--integrator photon", "bad.json: /objects/0: the object reaches 1e+19, which is out of range"},
+      {"a mesh scaled past the range", replaced("{\"type\": \"quad\", \"origin\": [-2, 0, -2], \"edge1\": [0, 0, 4], \"edge2\": [4, 0, 0],",
+                                                "{\"type\": \"mesh\", \"vertices\": [[0, 0, 0], [1, 0, 0], [0, 0, 1]], \"indices\": [[0, 1, 2]], \"scale\": 1e18,"),
+       "", "bad.json: /objects/0: the object reaches 1e+18, which is out of range"},
   };
   for (const Case& c : cases) {
     SECTION(c.name) {
@@ -139,6 +155,88 @@ TEST_CASE("cli: bad input exits non-zero with a located message and writes no im
       CHECK(test::no_images_left(dir));
     }
   }
+}
+
+TEST_CASE("cli: a scene scaled up to the coordinate bound renders as it does at scale 1, on both backends", "[app]") {
+  // A diffuse floor and sphere under a directional light: their radiance does not depend on the
+  // scene's scale. At 2.5e8 the camera stands at 7.5e8 and the floor reaches 5e8 (the bound is
+  // 1e9); before the bound existed, 1e17 dropped the floor as "degenerate" and 2e18 aborted Embree.
+  test::TempDir dir;
+  auto scene = [](double s) {
+    auto v = [s](double x, double y, double z) { return nlohmann::json::array({x * s, y * s, z * s}); };
+    nlohmann::json j = {
+        {"camera", {{"position", v(0, 1, 3)}, {"look_at", v(0, 0.5, 0)}, {"fov", 50}}},
+        {"render", {{"width", 24}, {"height", 24}, {"spp", 4}}},
+        {"materials", {{"white", {{"type", "diffuse"}, {"albedo", 0.7}}}}},
+        {"objects",
+         {{{"type", "quad"}, {"origin", v(-2, 0, -2)}, {"edge1", v(0, 0, 4)}, {"edge2", v(4, 0, 0)}, {"material", "white"}},
+          {{"type", "sphere"}, {"center", v(0, 0.5, 0)}, {"radius", 0.5 * s}, {"material", "white"}}}},
+        {"lights", {{{"type", "directional"}, {"direction", {0.3, -1, -0.4}}, {"irradiance", 2}}}}};
+    return j.dump();
+  };
+  dir.write("one.json", scene(1.0));
+  dir.write("big.json", scene(2.5e8));
+  for (const std::string accel : {"bvh", "embree"}) {
+    if (accel == "embree" && !embree_available()) continue;
+    for (const std::string integrator : {"path", "photon"}) {
+      INFO(accel << " " << integrator);
+      for (const std::string name : {"one", "big"}) {
+        const auto r = run_caustica("render " + name + ".json --accel " + accel + " --integrator " + integrator +
+                                        " --threads 1 -o " + name + ".pfm -q",
+                                    dir);
+        INFO(r.err);
+        REQUIRE(r.exit_code == 0);
+      }
+      const Image one = read_image(dir.file("one.pfm")), big = read_image(dir.file("big.pfm"));
+      CHECK(one.mean().x > 0.1f);
+      CHECK(big.mean().x == Approx(one.mean().x).epsilon(0.02));
+      // Pixel by pixel too: the same random numbers at both scales.
+      double diff = 0.0;
+      for (size_t i = 0; i < one.pixels.size(); ++i) diff += std::abs(double(big.pixels[i].x) - one.pixels[i].x);
+      CHECK(diff / one.pixels.size() < 0.05 * one.mean().x);
+    }
+  }
+}
+
+TEST_CASE("cli: under a memory limit, large allocations are refused with what they need", "[app]") {
+  // Issue 23: these ended in "internal error: std::bad_alloc" (exit 2).
+  if (!test::kAddressSpaceLimits) {
+    WARN("skipped: ulimit -v cannot be used under AddressSanitizer");
+    return;
+  }
+  test::TempDir dir;
+  dir.write("scene.json", test::kLitFloorScene);
+  auto r = run_caustica("render scene.json --width 16384 --height 16384 -o big.png", dir, test::address_space_limit(4 << 20));
+  CHECK(r.exit_code == 1);
+  CHECK(r.err.find("error: a 16384 x 16384 image needs about 19.0 GiB of memory; the address-space limit (ulimit -v) leaves ") !=
+        std::string::npos);
+  r = run_caustica("render scene.json --integrator photon --photons 30000000 -o p.png", dir, test::address_space_limit(2 << 20));
+  CHECK(r.exit_code == 1);
+  CHECK(r.err.find("error: the photon maps of 30") != std::string::npos);
+  CHECK(r.err.find("GiB of memory; the address-space limit (ulimit -v) leaves ") != std::string::npos);
+  CHECK(test::no_images_left(dir));
+  // The same limit leaves room for an ordinary render.
+  r = run_caustica("render scene.json --integrator photon -o ok.png -q", dir, test::address_space_limit(2 << 20));
+  CHECK(r.exit_code == 0);
+}
+
+TEST_CASE("cli: compare refuses an image that declares more pixels than it holds, a folder and a device", "[app]") {
+  test::TempDir dir;
+  dir.write("big.pfm", "PF\n100000 100000\n-1.0\n" + std::string(1200, '\0'));
+  Image ref(4, 2);
+  write_image(dir.file("ref.pfm"), ref);
+  auto r = run_caustica("compare big.pfm ref.pfm", dir);
+  CHECK(r.exit_code == 1);
+  CHECK(r.err == "error: big.pfm: the image declares 100000 x 100000 pixels, more than the file holds\n");
+  fs::create_directory(dir.file("folder"));
+  r = run_caustica("compare folder ref.pfm", dir);
+  CHECK(r.exit_code == 1);
+  CHECK(r.err == "error: folder: is a folder, not an image file\n");
+  r = run_caustica("compare /dev/zero ref.pfm", dir);
+  CHECK(r.exit_code == 1);
+  CHECK(r.err == "error: /dev/zero: is not a regular file (a device or a pipe?), not an image file\n");
+  r = run_caustica("compare nothing.pfm ref.pfm", dir);
+  CHECK(r.err == "error: nothing.pfm: image file not found\n");
 }
 
 TEST_CASE("cli: compare refuses images with NaN or infinite pixels", "[app]") {

@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include "core/accel.h"
 #include "io/json_reader.h"
 #include "io/scene_loader.h"
 
@@ -80,16 +81,22 @@ TEST_CASE("fuzz regressions: large generated inputs", "[core][fuzz]") {
     CHECK(loaded.triangle_count == 0);
     CHECK(loaded.sphere_count == 1);
   }
-  SECTION("1e308 is refused (it would be inf as a float); centroids at +-3e38 still build a BVH") {
+  SECTION("1e308 is refused (it would be inf as a float); 3e38 is out of range; centroids at +-3e38 still build a BVH") {
     const std::string far = R"(, {"type": "sphere", "center": [X, 0, 0], "radius": 1, "material": "w"})";
     auto sphere_at = [&](const std::string& x) { return far.substr(0, far.find('X')) + x + far.substr(far.find('X') + 1); };
     REQUIRE_THROWS_WITH(parse_scene(kHead + sphere_at("1e308") + "]}", "fuzz.json", kNoMeshDir),
                         Contains("/objects/1/center/0: number is too large"));
-    // The centroid extent overflows to inf: binning computed inf * 0 = NaN and cast it to int.
-    LoadedScene loaded;
-    REQUIRE_NOTHROW(loaded = parse_scene(kHead + sphere_at("3e38") + sphere_at("-3e38") + sphere_at("2") + "]}",
-                                         "fuzz.json", kNoMeshDir));
-    CHECK(loaded.scene->accel().primitives().size() == 4);
+    REQUIRE_THROWS_WITH(parse_scene(kHead + sphere_at("3e38") + "]}", "fuzz.json", kNoMeshDir),
+                        Contains("/objects/1: the object reaches 3e+38, which is out of range"));
+    // The BVH itself still copes: the centroid extent overflows to inf, and binning computed
+    // inf * 0 = NaN and cast it to int.
+    const std::vector<Primitive> prims = {Primitive::sphere(Vec3(3e38f, 0, 0), 1.0f), Primitive::sphere(Vec3(-3e38f, 0, 0), 1.0f),
+                                          Primitive::sphere(Vec3(2, 0, 0), 1.0f), Primitive::sphere(Vec3(0), 1.0f)};
+    const auto bvh = make_accelerator(AccelKind::Bvh, prims);
+    CHECK(bvh->primitives().size() == 4);
+    Hit hit;
+    CHECK(bvh->intersect(Ray{Vec3(-5, 0, 0), Vec3(1, 0, 0), kInfinity}, hit));
+    CHECK(hit.t == Approx(4.0f));
   }
   SECTION("a 16384 x 16384 render loads at once: the loader allocates no image") {
     const std::string text = kHead + R"(], "render": {"width": 16384, "height": 16384, "spp": 16777216}})";

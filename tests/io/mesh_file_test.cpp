@@ -216,6 +216,9 @@ TEST_CASE("mesh files: an OBJ with a nan, inf or garbage number names file and l
   CHECK(error_of([&] { read_mesh_file(inf); }) == inf + ":4: \"inf\" is not a finite number");
   const std::string junk = dir.write("junk.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0.5 x\nf 1 2 3\n");
   CHECK(error_of([&] { read_mesh_file(junk); }) == junk + ":4: \"x\" is not a finite number");
+  // Issue 23: a number past a float's range was read as infinity and the triangle dropped.
+  const std::string big = dir.write("big.obj", "v 0 0 0\nv 1 0 0\nv 0 1 1e39\nf 1 2 3\n");
+  CHECK(error_of([&] { read_mesh_file(big); }) == big + ":3: 1e39 is too large for a float (the largest is about 3.4e38)");
   const std::string none = dir.write("none.obj", "v 0 0 0\n");
   CHECK_THAT(error_of([&] { read_mesh_file(none); }), Contains("has no faces"));
   // Through a scene, the error keeps the file and line and adds the JSON pointer.
@@ -223,6 +226,19 @@ TEST_CASE("mesh files: an OBJ with a nan, inf or garbage number names file and l
     "materials": {"m": {"type": "diffuse"}}, "objects": [{"type": "mesh", "file": "nan.obj", "material": "m"}]})");
   const std::string msg = error_of([&] { load_scene(scene); });
   CHECK_THAT(msg, Contains("/objects/0/file") && Contains("nan.obj:2: \"nan\" is not a finite number"));
+}
+
+TEST_CASE("mesh files: an OBJ face naming a vt or vn the file lacks is an error", "[mesh]") {
+  // Issue 23: these were ignored silently (the triangle lost its UVs or normals).
+  test::TempDir dir;
+  const std::string vt = dir.write("vt.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nf 1/1 2/2 3/5\n");
+  CHECK(error_of([&] { read_mesh_file(vt); }) ==
+        "OBJ file " + vt + ": face 1 names texture coordinate (vt) 5, but the file has 2");
+  const std::string vn = dir.write("vn.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\no part\nf 1//1 2//1 3//1\nf 1//1 3//1 2//9\n");
+  CHECK(error_of([&] { read_mesh_file(vn); }) == "OBJ file " + vn + ": face 2 of \"part\" names normal (vn) 9, but the file has 1");
+  // In range they are read (and a corner without them is fine).
+  const std::string ok = dir.write("ok.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nvt 0 0\nf 1/1/1 2/1/1 3/1/1\nf 1 2 3\n");
+  CHECK(read_mesh_file(ok).tris.size() == 2);
 }
 
 TEST_CASE("mesh files: ASCII PLY with normals and UVs reads back exactly", "[mesh]") {
@@ -341,6 +357,30 @@ TEST_CASE("mesh files: Mitsuba serialized shapes read back exactly and shape_ind
     CHECK_THAT(msg, StartsWith(bad + ":2:"));
     CHECK_THAT(msg, Contains("shape_index 5 is out of range (the file holds 2 shapes)"));
   }
+}
+
+TEST_CASE("mesh files: a serialized shape is inflated only as far as its counts declare and memory allows", "[mesh]") {
+  // Issue 23: a 1.2 MB file inflating to 1.2 GB reached 2.2 GB before its error.
+  test::TempDir dir;
+  // Counts of 2^28 vertices (3 GiB of positions) over 80 MiB of zeros: inflated past 64 MiB,
+  // the rest is checked against the memory limit first.
+  SerializedShape s;
+  std::string raw = serialized_raw(s, uint64_t(1) << 28, 1);
+  raw.append(size_t(80) << 20, '\0');
+  dir.write("bomb.serialized", serialized_blob(raw));
+  dir.write("scene.json", R"({"camera": {"position": [0, 0, 5], "look_at": [0, 0, 0]},
+    "materials": {"m": {"type": "diffuse"}}, "objects": [{"type": "mesh", "file": "bomb.serialized", "material": "m"}]})");
+  if (test::kAddressSpaceLimits) {
+    const auto r = test::run_caustica("render scene.json -o out.png", dir, test::address_space_limit(2 << 20));
+    CHECK(r.exit_code == 1);
+    CHECK_THAT(r.err, Contains("bomb.serialized (268435456 vertices, 1 triangles) needs about ") &&
+                          Contains("GiB of memory; the address-space limit (ulimit -v) leaves "));
+  }
+  // Short of the counts and under 64 MiB, it is "truncated", whatever the memory.
+  raw = serialized_raw(s, uint64_t(1) << 28, 1);
+  raw.append(size_t(1) << 20, '\0');
+  const std::string lying = dir.write("lying.serialized", serialized_blob(raw));
+  CHECK(error_of([&] { read_mesh_file(lying); }) == lying + ": truncated while reading the vertex positions");
 }
 
 TEST_CASE("mesh files: a truncated or corrupt serialized file is an error", "[mesh]") {

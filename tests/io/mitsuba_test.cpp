@@ -864,3 +864,28 @@ TEST_CASE("mitsuba: 0.6 sppm, ppm and photonmapper become sppm, progressive phot
     CHECK_NOTHROW(create_integrator(loaded.integrator_type, loaded.integrator_settings, loaded.scene->render));
   }
 }
+
+TEST_CASE("mitsuba: <default> values that double each other stop at 1 MiB, and long values are not echoed whole", "[mitsuba]") {
+  // Issue 23: 29 doublings of a 2 KB file took 5.9 GB and 60 s before this bound.
+  std::string defaults = R"(  <default name="a0" value="xy"/>)";
+  for (int i = 1; i <= 29; ++i) {
+    defaults += "\n  <default name=\"a" + std::to_string(i) + "\" value=\"$a" + std::to_string(i - 1) + "$a" +
+                std::to_string(i - 1) + "\"/>";
+  }
+  const std::string msg = error_of([&] { translate(xml_scene(defaults)); });
+  // a19 is 2^20 characters; a20 would be twice that.
+  CHECK_THAT(msg, StartsWith("scene.xml:22:4: <default name=\"a20\">: \"$a19\" expands this value past 1 MiB"));
+  CHECK(msg.size() < 2 * InputError::kMaxLine);
+  // Many uses of a value just under the bound: stopped at 64 MiB in all.
+  std::string uses = R"(  <default name="b0" value="xy"/>)";
+  for (int i = 1; i <= 19; ++i) {
+    uses += "\n  <default name=\"b" + std::to_string(i) + "\" value=\"$b" + std::to_string(i - 1) + "$b" + std::to_string(i - 1) + "\"/>";
+  }
+  for (int i = 0; i < 100; ++i) uses += "\n  <default name=\"c" + std::to_string(i) + "\" value=\"$b19\"/>";
+  CHECK_THAT(error_of([&] { translate(xml_scene(uses)); }), Contains("has produced more than 64 MiB of text in this scene"));
+  // An error quoting a megabyte-long name keeps its start and end and says what it left out.
+  const std::string name(1 << 20, 'n');
+  const std::string echo = error_of([&] { translate(xml_scene("  <shape type=\"" + name + "\"/>")); });
+  CHECK(echo.size() < 2 * InputError::kMaxLine);
+  CHECK_THAT(echo, StartsWith("scene.xml:2:4: <shape type=\"nnnn") && Contains(" characters left out ...] "));
+}

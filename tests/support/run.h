@@ -27,6 +27,15 @@ inline RunResult run_caustica(const std::string& args, const TempDir& dir, const
   return r;
 }
 
+// A shell prefix that limits the address space to `kib` KiB (ulimit -v), or "" where that cannot
+// work: AddressSanitizer reserves terabytes of shadow address space at start-up.
+#if defined(__SANITIZE_ADDRESS__)
+constexpr bool kAddressSpaceLimits = false;
+#else
+constexpr bool kAddressSpaceLimits = true;
+#endif
+inline std::string address_space_limit(size_t kib) { return "ulimit -v " + std::to_string(kib) + " && "; }
+
 // A 16x16 scene with a floor and a small area light, for command-line tests.
 inline const char* kLitFloorScene = R"({
   "camera": {"position": [0, 1, 3], "look_at": [0, 1, 0], "fov": 50},

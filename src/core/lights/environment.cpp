@@ -1,4 +1,5 @@
 // Environment lights.
+#include <cstdio>
 #include "core/lights/environment.h"
 #include "core/lights/read.h"
 
@@ -110,10 +111,19 @@ EmittedPhoton EnvironmentLight::sample_emission(const Vec2& u_pos, const Vec2& u
 std::unique_ptr<Light> EnvironmentLight::create(const Params& p) {
   const std::string path = p.file("filename", "environment map");
   Image image = p.image("filename", "environment map");
+  float brightest = 0.0f;
   for (const Color& c : image.pixels) {
     if (!is_finite(c) || c.x < 0 || c.y < 0 || c.z < 0) p.fail("filename", "environment map " + path + " has negative or non-finite pixels");
+    brightest = std::max(brightest, max_component(c));
   }
-  const float scale = float(p.number_in("scale", 1.0, 0.0, 1e30));
+  const float scale = float(p.number_in("scale", 1.0, 0.0, kMaxColor));
+  if (double(brightest) * scale > kMaxColor) {
+    char value[32];
+    std::snprintf(value, sizeof value, "%g", double(brightest) * scale);
+    p.fail("filename", "environment map " + path + " is too bright: its brightest pixel" +
+                           (scale == 1.0f ? std::string() : " times its scale") + " is " + value +
+                           ", the most a scene may emit is 1e9");
+  }
   auto env = std::make_unique<EnvironmentLight>(std::move(image), scale, p.rotation("to_world"));
   if (is_black(env->power())) p.fail("filename", "the environment map is black: it emits nothing");
   return env;

@@ -31,7 +31,7 @@ Bounds PointLight::bounds() const {
 }
 
 std::unique_ptr<Light> PointLight::create(const Params& p) {
-  return std::make_unique<PointLight>(p.vec3("position"), read_nonzero(p, "intensity"));
+  return std::make_unique<PointLight>(p.point("position"), read_nonzero(p, "intensity"));
 }
 
 }  // namespace caustica

@@ -30,11 +30,11 @@ float SpotProfile::falloff(const Vec3& dir) const {
 }
 
 std::unique_ptr<Light> create_spot_light(const Params& p) {
-  const Vec3 pos = p.vec3("position");
+  const Vec3 pos = p.point("position");
   Vec3 dir;
   if (p.has("target") == p.has("direction")) p.fail("", "give either direction or target");
   if (p.has("target")) {
-    dir = p.vec3("target") - pos;
+    dir = p.point("target") - pos;
     if (!(glm::length(dir) > 0.0f)) p.fail("target", "target equals position");
   } else {
     dir = read_direction(p, "direction");

@@ -1,5 +1,6 @@
 // OBJ meshes through tinyobjloader, with a pass of our own that checks every number.
 #include <cmath>
+#include <limits>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -10,8 +11,9 @@
 namespace caustica {
 namespace {
 
-// tinyobjloader reads "nan", "inf" and garbage in v/vn/vt lines as 0 without a word: every
-// number there must be finite, else the error names the file and the line. An mtllib must be
+// tinyobjloader reads "nan", "inf" and garbage in v/vn/vt lines as 0 without a word, and 1e39
+// as a float's infinity: every number there must be finite as a float, else the error names
+// the file and the line. An mtllib must be
 // a regular file (a FIFO or /dev/zero would block the reader or never end).
 void check_obj_numbers(std::istream& in, const std::string& file) {
   std::string line;
@@ -37,8 +39,20 @@ void check_obj_numbers(std::istream& in, const std::string& file) {
       if (end == tok.c_str() || *end != '\0' || !std::isfinite(v)) {
         throw InputError(file + ":" + std::to_string(number) + ": \"" + tok + "\" is not a finite number");
       }
+      if (!(std::abs(v) <= double(std::numeric_limits<float>::max()))) {
+        throw InputError(file + ":" + std::to_string(number) + ": " + tok + " is too large for a float (the largest is about 3.4e38)");
+      }
     }
   }
+}
+
+// A face corner's vn or vt index: -1 (none given) or one of the file's `count`.
+void check_attribute_index(int index, size_t count, const char* what, const std::string& file, size_t face,
+                           const std::string& shape) {
+  if (index == -1 || (index >= 0 && size_t(index) < count)) return;
+  throw InputError("OBJ file " + file + ": face " + std::to_string(face + 1) +
+                   (shape.empty() ? std::string() : " of \"" + shape + "\"") + " names " + what + " " +
+                   std::to_string(int64_t(index) + 1) + ", but the file has " + std::to_string(count));
 }
 
 Color rgb(const tinyobj::real_t* c) { return Color(c[0], c[1], c[2]); }
@@ -106,6 +120,8 @@ MeshData read_obj(const std::string& file) {
       a.has_normals = a.has_uvs = true;
       for (int k = 0; k < 3; ++k) {
         const auto& c = idx[i + size_t(k)];
+        check_attribute_index(c.normal_index, n_normals, "normal (vn)", file, face, shape.name);
+        check_attribute_index(c.texcoord_index, n_uvs, "texture coordinate (vt)", file, face, shape.name);
         if (c.normal_index >= 0 && size_t(c.normal_index) < n_normals) {
           const float* n = &attrib.normals[3 * size_t(c.normal_index)];
           a.n[k] = Vec3(n[0], n[1], n[2]);

@@ -8,12 +8,14 @@
 #include <sstream>
 #include <zlib.h>
 #include "core/error.h"
+#include "core/memory.h"
 #include "io/meshes/mesh_file.h"
 
 namespace caustica {
 namespace {
 
 constexpr uint16_t kMagic = 0x041C;
+constexpr size_t kMaxNameLength = size_t(1) << 16;  // a v4 shape's name, its terminating zero included
 enum : uint32_t {
   kVertexNormals = 0x0001,
   kTexcoords = 0x0002,
@@ -30,33 +32,44 @@ T load(const std::string& bytes, size_t at) {
   return v;
 }
 
-// Inflates the zlib stream starting at `at`, up to `limit` bytes of output.
-std::string inflate_from(const std::string& bytes, size_t at, const std::string& name) {
-  z_stream zs{};
-  if (inflateInit(&zs) != Z_OK) throw InputError(name + ": zlib cannot be initialised");
-  zs.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(bytes.data() + at));
-  zs.avail_in = uInt(std::min<size_t>(bytes.size() - at, std::numeric_limits<uInt>::max()));
-  std::string out;
-  char buffer[1 << 16];
-  int rc = Z_OK;
-  while (rc == Z_OK) {
-    zs.next_out = reinterpret_cast<Bytef*>(buffer);
-    zs.avail_out = sizeof(buffer);
-    rc = inflate(&zs, Z_NO_FLUSH);
-    out.append(buffer, sizeof(buffer) - zs.avail_out);
-    if (rc == Z_BUF_ERROR && zs.avail_in == 0) break;
-    if (out.size() > (size_t(1) << 32)) {
-      inflateEnd(&zs);
-      throw InputError(name + ": the mesh inflates to more than 4 GiB");
+// The zlib stream of one shape, inflated on demand: the header first, then as much as its counts
+// declare and memory allows, so that a small file cannot inflate into gigabytes unasked.
+class Inflater {
+ public:
+  Inflater(const std::string& bytes, size_t at, const std::string& name) : at_(at), name_(name) {
+    if (inflateInit(&zs_) != Z_OK) throw InputError(name + ": zlib cannot be initialised");
+    zs_.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(bytes.data() + at));
+    zs_.avail_in = uInt(std::min<size_t>(bytes.size() - at, std::numeric_limits<uInt>::max()));
+  }
+  ~Inflater() { inflateEnd(&zs_); }
+  Inflater(const Inflater&) = delete;
+  Inflater& operator=(const Inflater&) = delete;
+
+  // Appends to `out` until it holds `size` bytes or the stream ends.
+  void fill(std::string& out, size_t size) {
+    char buffer[1 << 16];
+    while (!ended_ && out.size() < size) {
+      zs_.next_out = reinterpret_cast<Bytef*>(buffer);
+      zs_.avail_out = uInt(std::min(sizeof(buffer), size - out.size()));
+      const uInt asked = zs_.avail_out;
+      const int rc = inflate(&zs_, Z_NO_FLUSH);
+      out.append(buffer, asked - zs_.avail_out);
+      if (rc == Z_STREAM_END) {
+        ended_ = true;
+      } else if (rc == Z_DATA_ERROR || rc == Z_NEED_DICT || rc == Z_MEM_ERROR ||
+                 (rc == Z_BUF_ERROR && zs_.avail_in == 0)) {
+        throw InputError(name_ + ": the compressed mesh data at byte " + std::to_string(at_) +
+                         (rc == Z_BUF_ERROR ? " is truncated" : " is corrupt"));
+      }
     }
   }
-  inflateEnd(&zs);
-  if (rc != Z_STREAM_END) {
-    throw InputError(name + ": the compressed mesh data at byte " + std::to_string(at) +
-                     (rc == Z_DATA_ERROR ? " is corrupt" : " is truncated"));
-  }
-  return out;
-}
+
+ private:
+  z_stream zs_{};
+  size_t at_;
+  const std::string& name_;
+  bool ended_ = false;
+};
 
 // Reads the uncompressed stream of one shape.
 class StreamReader {
@@ -88,6 +101,7 @@ class StreamReader {
     }
     at_ += n * size_t(dim) * size;
   }
+  size_t position() const { return at_; }
   void skip(size_t n, const char* what) {
     need(n, what);
     at_ += n;
@@ -126,7 +140,9 @@ MeshData parse_serialized(const std::string& bytes, const std::string& name, int
       throw InputError(name + ": the offset of shape " + std::to_string(shape_index) + " does not point at a shape");
     }
   }
-  const std::string data = inflate_from(bytes, offset + 4, name);
+  Inflater zlib(bytes, offset + 4, name);
+  std::string data;
+  zlib.fill(data, 4 + kMaxNameLength + 16);  // flags, (v4) the name, the counts
   StreamReader in(data, name);
   const uint32_t flags = in.get<uint32_t>("flags");
   if (version == 4) in.cstring();
@@ -134,8 +150,20 @@ MeshData parse_serialized(const std::string& bytes, const std::string& name, int
   const bool dbl = (flags & kDoublePrecision) != 0;
   if (nv == 0 || nt == 0) throw InputError(name + ": shape " + std::to_string(shape_index) + " has no triangles");
   if (nv > (uint64_t(1) << 31) || nt > (uint64_t(1) << 31)) throw InputError(name + ": more than 2^31 vertices or triangles");
+  // What the counts declare: the stream's bytes, then our arrays (positions, normals, UVs and
+  // indices; per triangle its attributes and a material id).
+  const size_t real = dbl ? 8 : 4;
+  const int per_vertex = 3 + ((flags & kVertexNormals) ? 3 : 0) + ((flags & kTexcoords) ? 2 : 0) + ((flags & kColors) ? 3 : 0);
+  const double stream_bytes = double(in.position()) + double(nv) * per_vertex * real + double(nt) * 12.0;
+  // The first 64 MiB unchecked: a file that declares more than it holds is then "truncated".
+  zlib.fill(data, std::min(size_t(stream_bytes), size_t(64) << 20));
+  if (data.size() < size_t(stream_bytes) && data.size() >= (size_t(64) << 20)) {
+    check_memory(stream_bytes + double(nv) * (12.0 + 4.0 * per_vertex) + double(nt) * (12.0 + sizeof(TriangleAttributes) + 4.0),
+                 name + " (" + std::to_string(nv) + " vertices, " + std::to_string(nt) + " triangles)");
+    zlib.fill(data, size_t(stream_bytes));
+  }
   // The stream must hold the positions and indices it declares before anything is allocated.
-  in.need(size_t(nv) * 3 * (dbl ? 8 : 4), "vertex positions");
+  in.need(size_t(nv) * 3 * real, "vertex positions");
   if (nt > (data.size() / 12)) throw InputError(name + ": truncated while reading the triangle indices");
   MeshData mesh;
   std::vector<float> pos(3 * nv), normals, uvs;

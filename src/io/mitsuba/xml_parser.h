@@ -65,6 +65,7 @@ class Parser {
   std::map<std::string, XmlObject*> ids_;
   std::vector<PendingRef> refs_;
   int include_depth_ = 0, includes_ = 0;
+  mutable size_t expanded_bytes_ = 0;  // characters that $name substitution has produced so far
   std::vector<std::string> include_stack_;  // canonical paths of the files being read
 
   [[noreturn]] void fail(const Source& src, const pugi::xml_node& node, const std::string& message) const;
@@ -81,6 +82,8 @@ class Parser {
   // Replaces each $name (letters, digits, underscores) by its value; "\\$" is a dollar sign.
   // Mitsuba replaces the longest defined names first, so that $r also matched inside $rough; a
   // whole-name match makes $rough with only r defined an error instead of "0.5ough".
+  // Bounded, so that <default> values that double each other cannot exhaust memory: one value
+  // expands to at most kMaxExpandedValue characters, a whole scene to kMaxExpandedTotal.
   std::string subst(const Source& src, const pugi::xml_node& node, const std::string& value) const;
 
   std::string attr(const Source& src, const pugi::xml_node& node, const char* name) const;

@@ -115,6 +115,10 @@ bool Parser::upgrade(const Source& src, const pugi::xml_node& root) const {
   return major < 2;
 }
 
+namespace {
+constexpr size_t kMaxExpandedValue = size_t(1) << 20, kMaxExpandedTotal = size_t(64) << 20;
+}  // namespace
+
 std::string Parser::subst(const Source& src, const pugi::xml_node& node, const std::string& value) const {
   if (value.find('$') == std::string::npos) return value;
   std::string out;
@@ -136,7 +140,16 @@ std::string Parser::subst(const Source& src, const pugi::xml_node& node, const s
     if (it == params_.end()) {
       fail(src, node, "unknown parameter \"$" + name + "\": no <default name=\"" + name + "\" value=...> and no -D " + name + "=...");
     }
+    if (out.size() + it->second.size() > kMaxExpandedValue) {
+      fail(src, node, "\"$" + name + "\" expands this value past " + std::to_string(kMaxExpandedValue >> 20) +
+                          " MiB (do <default> values double each other?)");
+    }
     out += it->second;
+    expanded_bytes_ += it->second.size();
+    if (expanded_bytes_ > kMaxExpandedTotal) {
+      fail(src, node, "$name substitution has produced more than " + std::to_string(kMaxExpandedTotal >> 20) +
+                          " MiB of text in this scene (do <default> values double each other?)");
+    }
     i = end - 1;
   }
   return out;
