@@ -51,3 +51,12 @@ def serialized_shape(name):
 first, second = serialized_shape(b"a"), serialized_shape(b"b")
 write("two.serialized", 2 + 3, first + second + struct.pack("<QQI", 0, len(first), 2))
 write("one.serialized", 2, first)
+
+
+# Issue 23's reproductions: a number past a float's range, a vt index past the file's, and a
+# shape whose counts declare 2^28 vertices over 8 MiB of zeros (inflated only so far, then
+# "truncated"; it once inflated all of a stream before reading a count).
+write("obj-1e39.obj", 0, b"v 0 0 0\nv 1 0 0\nv 0 1 1e39\nf 1 2 3\n")
+write("obj-vt-out-of-range.obj", 0, b"v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/1 2/1 3/7\n")
+bomb = struct.pack("<I", 0x1000) + b"bomb\0" + struct.pack("<QQ", 1 << 28, 1) + bytes(8 << 20)
+write("serialized-declares-2pow28.serialized", 2, struct.pack("<HH", 0x041C, 4) + zlib.compress(bomb, 9))

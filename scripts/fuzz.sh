@@ -46,7 +46,7 @@ esac
 
 log=build-fuzz/fuzz-$target.log
 set +e
-"build-fuzz/$exe" "$corpus" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=4096 \
+"build-fuzz/$exe" "$corpus" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
   -dict="$dict" -artifact_prefix="$artifacts/" -print_final_stats=1 2>&1 | tee "$log" \
   | grep -E --line-buffered "pulse|DONE|ERROR|SUMMARY|artifact|Test unit written"
 status=${PIPESTATUS[0]}

@@ -137,6 +137,21 @@ std::string integrator_list() {
   return s;
 }
 
+// Each name of a comma-separated list of integrators.
+const CLI::Validator kIntegratorName(
+    [](std::string& name) {
+      if (name.empty()) return std::string("an empty integrator name (write e.g. photon,path)");
+      if (name[0] == '-') {
+        // CLI11 lets a list that ends in its delimiter go on in the next argument.
+        return "expected integrator names (e.g. photon,path), not \"" + name + "\"";
+      }
+      for (const auto& n : integrator_names()) {
+        if (n == name) return std::string();
+      }
+      return "unknown integrator \"" + name + "\" (known: " + integrator_list() + ")";
+    },
+    "INTEGRATOR");
+
 }  // namespace
 
 int run_cli(int argc, char** argv) {
@@ -178,6 +193,7 @@ int run_cli(int argc, char** argv) {
       ->allow_extra_args(false);
   converge->add_option("--integrators", vargs.integrators, "Integrators to compare, e.g. photon,path")
       ->delimiter(',')
+      ->check(kIntegratorName)
       ->required();
   converge->add_option("--time", vargs.time, "Seconds per integrator (photon pass included)")
       ->required()
@@ -202,6 +218,19 @@ int run_cli(int argc, char** argv) {
   plugins->add_option("--dict", plugins_args.dict, "Print a libFuzzer dictionary for the json or xml scene reader instead")
       ->check(CLI::IsMember({"json", "xml"}));
 
+  // CLI11 answers an unknown command with "A subcommand is required".
+  if (argc > 1 && argv[1][0] != '-') {
+    std::string known;
+    bool found = false;
+    for (const CLI::App* sub : app.get_subcommands({})) {
+      known += (known.empty() ? "" : ", ") + sub->get_name();
+      found = found || sub->get_name() == argv[1];
+    }
+    if (!found) {
+      std::cerr << "error: unknown command \"" << argv[1] << "\" (known: " << known << "; see caustica --help)\n";
+      return 1;
+    }
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

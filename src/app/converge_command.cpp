@@ -1,5 +1,6 @@
 // `caustica converge`.
 #include "app/converge_command.h"
+#include "app/stop_signals.h"
 #include <algorithm>
 #include <cmath>
 #include <chrono>
@@ -106,11 +107,15 @@ int run_converge(const ConvergeArgs& args) {
   report.images.push_back({"reference", "reference.png"});
   std::vector<ReportImage> error_images;
 
-  for (size_t i = 0; i < integrators.size(); ++i) {
+  // Ctrl-C or SIGTERM ends the integrator being run after its completed passes; the figures so
+  // far are written (the report says it was interrupted), and the exit code is 128 + the signal.
+  StopSignals stop_signals;
+  bool interrupted = false;
+  for (size_t i = 0; i < integrators.size() && !interrupted; ++i) {
     Integrator& integ = *integrators[i];
     const std::string name = args.integrators[i];
     const auto t0 = std::chrono::steady_clock::now();
-    integ.preprocess(scene, {scene.render.seed, quiet, nullptr, cluster.rank()});
+    integ.preprocess(scene, {scene.render.seed, quiet, &StopSignals::flag(), cluster.rank()});
     const double pre = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     size_t next = 0;
     ReportSeries series{name, {}};
@@ -136,9 +141,17 @@ int run_converge(const ConvergeArgs& args) {
       record(t, passes, mean);
       while (next < checkpoints.size() && t >= checkpoints[next]) ++next;
     };
+    options.cancel = &StopSignals::flag();
     RenderStats stats;
     const Image image = render_image(scene, integ, options, stats);
-    if (!root) continue;
+    interrupted = stats.interrupted;
+    if (interrupted) {
+      std::string left;
+      for (size_t k = i + 1; k < integrators.size(); ++k) left += (left.empty() ? "; not run: " : ", ") + args.integrators[k];
+      report.facts.emplace_back("interrupted", "during " + name + ", after " + std::to_string(stats.passes) + " passes" + left);
+      if (!quiet && root) std::cerr << "interrupted during " << name << left << "\n";
+    }
+    if (!root || stats.passes == 0) continue;
     const double total = pre + stats.seconds;
     if (series.points.empty() || series.points.back().passes != stats.passes) record(total, stats.passes, image);
     report.series.push_back(series);
@@ -175,12 +188,13 @@ int run_converge(const ConvergeArgs& args) {
     report.facts.emplace_back(name, std::to_string(stats.passes) + " passes in " + std::to_string(total) + " s (" +
                                         std::to_string(pre) + " s preprocess)");
   }
-  if (!root) return 0;
+  // The handlers stay until the files are written (a signal meanwhile waits for them).
+  if (!root) return interrupted ? StopSignals::exit_code() : 0;
   report.images.insert(report.images.end(), error_images.begin(), error_images.end());
   write_file_atomically((fs::path(args.out_dir) / "convergence.csv").string(), convergence_csv(rows, has_floor ? std::optional<double>(combined.floor) : std::nullopt), "CSV");
   write_report(args.out_dir, report);
   if (!quiet) std::cout << "wrote " << (fs::path(args.out_dir) / "index.html").string() << "\n";
-  return 0;
+  return interrupted ? StopSignals::exit_code() : 0;
 }
 
 }  // namespace caustica

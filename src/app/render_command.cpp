@@ -1,13 +1,12 @@
 // `caustica render`.
 #include "app/render_command.h"
-#include <atomic>
-#include <csignal>
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
 #include <sstream>
 #include <tbb/global_control.h>
 #include "app/compare_command.h"
+#include "app/stop_signals.h"
 #include "io/image_io.h"
 #include "io/json_reader.h"
 #include "io/scene_loader.h"
@@ -15,40 +14,6 @@
 #include "trace/render.h"
 
 namespace caustica {
-namespace {
-
-// Ctrl-C (SIGINT) and SIGTERM (what batch schedulers such as Slurm send at a job's time limit)
-// both stop the render after the passes completed so far, which are written.
-std::atomic<bool> g_interrupted{false};
-std::atomic<int> g_signal{0};
-extern "C" void on_stop_signal(int sig) {
-  g_signal.store(sig);
-  g_interrupted.store(true);
-}
-
-// Installs on_stop_signal for SIGINT and SIGTERM until restore() or the end of the scope (an
-// error on the way out included).
-class StopSignals {
- public:
-  StopSignals() : previous_int_(std::signal(SIGINT, on_stop_signal)), previous_term_(std::signal(SIGTERM, on_stop_signal)) {}
-  ~StopSignals() { restore(); }
-  StopSignals(const StopSignals&) = delete;
-  StopSignals& operator=(const StopSignals&) = delete;
-  void restore() {
-    if (restored_) return;
-    std::signal(SIGINT, previous_int_);
-    std::signal(SIGTERM, previous_term_);
-    restored_ = true;
-  }
-
- private:
-  void (*previous_int_)(int);
-  void (*previous_term_)(int);
-  bool restored_ = false;
-};
-
-}  // namespace
-
 int run_render(const RenderArgs& args) {
   LoadedScene loaded = load_scene_with(args.common);
   Scene& scene = *loaded.scene;
@@ -85,14 +50,12 @@ int run_render(const RenderArgs& args) {
   const int threads = thread_count(args.common);
   tbb::global_control control(tbb::global_control::max_allowed_parallelism, size_t(threads));
 
-  g_interrupted = false;
-  g_signal = 0;
   // Ctrl-C and SIGTERM stop the render (the passes done are kept) and, while the image is being
   // written, wait for it: the handlers stay until the outputs are in place (issue 23).
   StopSignals stop_signals;
   const bool quiet = args.common.quiet || !cluster.root();  // one progress bar and report: rank 0's
   const RenderJob job = render_job(rs, args.time ? *args.time : 0.0);
-  PreprocessContext pre{job.seed, quiet, &g_interrupted, cluster.rank()};
+  PreprocessContext pre{job.seed, quiet, &StopSignals::flag(), cluster.rank()};
   const auto t0 = std::chrono::steady_clock::now();
   integrator->preprocess(scene, pre);
   const double preprocess_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -101,17 +64,17 @@ int run_render(const RenderArgs& args) {
   options.job = job;
   options.quiet = quiet;
   options.cluster = &cluster;
-  options.cancel = &g_interrupted;
+  options.cancel = &StopSignals::flag();
   options.aov = args.aov;
   RenderStats stats;
   std::vector<Image> aovs;
   // Under MPI every rank enters the render, which agrees on a stop (a rank's preprocess may have
   // been interrupted while the others' was not).
-  Image image = g_interrupted && !cluster.distributed() ? Image(rs.width, rs.height)
+  Image image = StopSignals::stopped() && !cluster.distributed() ? Image(rs.width, rs.height)
                                                         : render_image(scene, *integrator, options, stats, &aovs);
-  if (g_interrupted) stats.interrupted = true;
+  if (StopSignals::stopped()) stats.interrupted = true;
   // The shell's convention: 128 + the signal (130 for SIGINT, 143 for SIGTERM).
-  const int interrupted_code = 128 + (g_signal.load() != 0 ? g_signal.load() : SIGINT);
+  const int interrupted_code = StopSignals::exit_code();
   // Rank 0 writes the image of all ranks. The others wait until it has: a rank that exits with
   // an error code (an interrupted one does) makes mpirun kill the rest of the job.
   if (!cluster.root()) {

@@ -132,17 +132,36 @@ std::vector<PluginListing> scene_plugins() {
 }
 
 
+namespace {
+// Scene files are UTF-8 (with or without a byte-order mark). UTF-16 and UTF-32 ones, as some
+// Windows editors save them, would otherwise be reported as a JSON syntax error.
+void check_encoding(const std::string& text, const std::string& file) {
+  auto starts = [&](const char* bom, size_t n) { return text.size() >= n && text.compare(0, n, bom, n) == 0; };
+  const bool wide = starts("\xFF\xFE", 2) || starts("\xFE\xFF", 2) || starts("\x00\x00\xFE\xFF", 4) ||
+                    (text.size() >= 2 && (text[0] == '\0' || text[1] == '\0'));
+  if (wide) {
+    throw InputError(file + ": the file is encoded as UTF-16 or UTF-32; scene files must be UTF-8 "
+                            "(convert it, e.g. iconv -f UTF-16 -t UTF-8)");
+  }
+}
+}  // namespace
+
 LoadedScene parse_scene(const std::string& text, const std::string& file, const std::string& base_dir,
                         const MitsubaOptions& mitsuba, const RenderOverrides& overrides) {
   json doc;
   std::shared_ptr<const SourceMap> sources;
   std::vector<std::string> warnings;
+  check_encoding(text, file);
   if (looks_like_xml(text)) {
     TranslatedScene t = read_mitsuba(text, file, base_dir, mitsuba);
     doc = std::move(t.doc);
     sources = std::move(t.sources);
     warnings = std::move(t.warnings);
   } else {
+    if (!mitsuba.xml.defines.empty()) {
+      throw InputError(file + ": -D " + mitsuba.xml.defines.begin()->first +
+                       "=... sets a parameter of a Mitsuba XML scene; this is a JSON scene, which has none");
+    }
     doc = parse_json_text(text, file);
   }
   Loader loader{JsonReader(file, sources), base_dir, overrides, {}, {}, {}};

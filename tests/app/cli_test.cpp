@@ -141,6 +141,15 @@ TEST_CASE("cli: bad input exits non-zero with a located message and writes no im
       {"a mesh scaled past the range", replaced("{\"type\": \"quad\", \"origin\": [-2, 0, -2], \"edge1\": [0, 0, 4], \"edge2\": [4, 0, 0],",
                                                 "{\"type\": \"mesh\", \"vertices\": [[0, 0, 0], [1, 0, 0], [0, 0, 1]], \"indices\": [[0, 1, 2]], \"scale\": 1e18,"),
        "", "bad.json: /objects/0: the object reaches 1e+18, which is out of range"},
+      // Issue 23: emission past what the film sums exactly rendered flat (1e15) or black (3e38).
+      {"emission 1e15", replaced("\"emission\": [5, 5, 5]", "\"emission\": [1e15, 5, 5]"), "",
+       "bad.json: /materials/lamp/emission/0: value 1e+15 is out of range [0, 1e+09]"},
+      {"emission 3e38", replaced("\"emission\": [5, 5, 5]", "\"emission\": 3e38"), "--integrator photon",
+       "bad.json: /materials/lamp/emission: value 3e+38 is out of range [0, 1e+09]"},
+      // Issue 23: messages that misled.
+      {"-D on a JSON scene", good, "-D rough=0.2", "bad.json: -D rough=... sets a parameter of a Mitsuba XML scene; this is a JSON scene"},
+      {"a UTF-16 scene", std::string("\xFF\xFE{\0\n\0", 6), "",
+       "bad.json: the file is encoded as UTF-16 or UTF-32; scene files must be UTF-8"},
   };
   for (const Case& c : cases) {
     SECTION(c.name) {
@@ -262,6 +271,44 @@ TEST_CASE("cli: compare refuses images with NaN or infinite pixels", "[app]") {
   CHECK_FALSE(fs::exists(dir.file("diff.png")));
   // Finite images still compare.
   r = run_caustica("compare ref.exr ref.exr", dir);
+  CHECK(r.exit_code == 0);
+}
+
+TEST_CASE("cli: an unknown command and an empty list of integrators are named as such", "[app]") {
+  // Issue 23: both were answered with what they were not ("A subcommand is required", "--time is required").
+  test::TempDir dir;
+  auto r = run_caustica("frobnicate", dir);
+  CHECK(r.exit_code == 1);
+  CHECK(r.err == "error: unknown command \"frobnicate\" (known: render, compare, converge, photons, plugins; see caustica --help)\n");
+  dir.write("scene.json", test::kLitFloorScene);
+  r = run_caustica("converge scene.json --integrators , --time 1 --reference ref.exr --out out", dir);
+  CHECK(r.exit_code == 1);
+  CHECK(r.err.find("--integrators: expected integrator names (e.g. photon,path), not \"--time\"") != std::string::npos);
+  r = run_caustica("converge scene.json --integrators path,phton --time 1 --reference ref.exr --out out", dir);
+  CHECK(r.exit_code == 1);
+  CHECK(r.err.find("--integrators: unknown integrator \"phton\" (known: path, photon") != std::string::npos);
+  CHECK_FALSE(fs::exists(dir.file("out")));
+}
+
+TEST_CASE("cli: an environment map brighter than a scene may emit is refused", "[app]") {
+  // Issue 23: an environment map of 3e38 rendered all black, with exit 0.
+  test::TempDir dir;
+  Image env(4, 2);
+  for (Color& c : env.pixels) c = Color(0.5f);
+  env.at(1, 1) = Color(3e38f, 1.0f, 1.0f);
+  write_image(dir.file("sky.exr"), env);
+  std::string scene(test::kLitFloorScene);
+  scene.insert(scene.rfind('}'), R"(, "lights": [{"type": "envmap", "filename": "sky.exr"}])");
+  dir.write("scene.json", scene);
+  auto r = run_caustica("render scene.json -o out.png", dir);
+  CHECK(r.exit_code == 1);
+  CHECK(r.err.find("scene.json: /lights/0/filename: environment map ./sky.exr is too bright: its brightest pixel is 3e+38, "
+                   "the most a scene may emit is 1e9") != std::string::npos);
+  fs::remove(dir.file("sky.exr"));
+  CHECK(test::no_images_left(dir));
+  env.at(1, 1) = Color(2.0f);
+  write_image(dir.file("sky.exr"), env);
+  r = run_caustica("render scene.json -o out.png -q", dir);
   CHECK(r.exit_code == 0);
 }
 

@@ -1,5 +1,6 @@
 // `caustica converge`: checkpoints, the CSV, and a short end-to-end run.
 #include <catch2/catch.hpp>
+#include <chrono>
 #include <filesystem>
 #include <sstream>
 #include <nlohmann/json.hpp>
@@ -122,4 +123,36 @@ TEST_CASE("converge: bad input is a clear error", "[app][converge]") {
   r = test::run_caustica("converge '" + tiny + "' --reference small.exr --integrators path,pathx --time 1 --out o", dir);
   CHECK(r.exit_code == 1);
   CHECK(r.err.find("unknown integrator \"pathx\"") != std::string::npos);
+}
+
+TEST_CASE("converge: Ctrl-C or SIGTERM ends the run with the figures so far written", "[app][converge][interrupt]") {
+  // Issue 23: converge had no handler, so a signal killed it and its report was lost.
+  for (const auto& [signal, code] : {std::pair<std::string, int>{"INT", 130}, std::pair<std::string, int>{"TERM", 143}}) {
+    INFO("SIG" << signal);
+    test::TempDir dir;
+    const std::string tiny = std::string(CAUSTICA_SOURCE_DIR) + "/tests/data/tiny.json";
+    auto r = test::run_caustica("render '" + tiny + "' --spp 16 -o ref.exr -q", dir);
+    REQUIRE(r.exit_code == 0);
+    // 60 s for path, then photon: the signal comes 2 s into path's run.
+    const auto t0 = std::chrono::steady_clock::now();
+    r = test::run_caustica("converge '" + tiny + "' --reference ref.exr --integrators path,photon --time 60 "
+                           "--checkpoints 0.5,1 --out report -q",
+                           dir, "timeout --preserve-status -s " + signal + " 2 ");
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    INFO(r.err);
+    CHECK(r.exit_code == code);
+    CHECK(seconds < 2.0 + 4.0);
+    // path's figures and images are there; photon, never started, is named in the report.
+    const std::string csv = test::read_text(dir.file("report/convergence.csv"));
+    CHECK(csv.find("\npath,0.5") != std::string::npos);
+    CHECK(csv.find("photon") == std::string::npos);
+    CHECK(fs::exists(dir.file("report/path.exr")));
+    CHECK_FALSE(fs::exists(dir.file("report/photon.exr")));
+    const std::string html = test::read_text(dir.file("report/index.html"));
+    CHECK(html.find("interrupted") != std::string::npos);
+    CHECK(html.find("not run: photon") != std::string::npos);
+    for (const auto& e : fs::recursive_directory_iterator(dir.path())) {
+      CHECK(e.path().filename().string().find(".tmp") == std::string::npos);
+    }
+  }
 }

@@ -795,7 +795,14 @@ TEST_CASE("mitsuba: reference cycles, self-including files and exponential shari
   CHECK(error_of([&] { translate(cycle); }) == "scene.xml:4:6: <ref id=\"a\">: this reference closes a cycle (an object inside itself)");
   test::TempDir dir;
   dir.write("self.xml", xml_scene("<include filename=\"self.xml\"/>"));
-  CHECK_THAT(error_of([&] { load_scene(dir.file("self.xml")); }), Contains("includes itself"));
+  CHECK_THAT(error_of([&] { load_scene(dir.file("self.xml")); }), Contains("makes a cycle") && Contains("includes itself"));
+  // Issue 23: with an id before the <include>, the main file read twice said "the id is already taken".
+  dir.write("with_id.xml", xml_scene("<bsdf type=\"diffuse\" id=\"w\"/>\n<include filename=\"with_id.xml\"/>"));
+  CHECK_THAT(error_of([&] { load_scene(dir.file("with_id.xml")); }),
+             StartsWith(dir.file("with_id.xml") + ":3:2: <include>: including ") && Contains("with_id.xml here makes a cycle"));
+  dir.write("a.xml", xml_scene("<include filename=\"b.xml\"/>"));
+  dir.write("b.xml", xml_scene("<bsdf type=\"diffuse\" id=\"w\"/>\n<include filename=\"a.xml\"/>"));
+  CHECK_THAT(error_of([&] { load_scene(dir.file("a.xml")); }), Contains("b.xml:3:2: <include>: including ") && Contains("a.xml here makes a cycle"));
   // Each level holds the one before twice: 2^20 BSDFs if expanded.
   std::string body = "<bsdf type=\"diffuse\" id=\"l0\"/>\n";
   for (int i = 1; i <= 20; ++i) {

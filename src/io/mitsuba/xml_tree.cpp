@@ -68,6 +68,9 @@ void Parser::parse_main(const std::string& text, const std::string& file, const 
   scene_.objects.push_back(std::move(scene));
   scene_.version = root.attribute("version").value();
   if (scene_.version.empty()) fail(src, root, "the <scene> has no version attribute (e.g. version=\"3.0.0\")");
+  // The main file too may be included again, by itself or another file.
+  std::error_code ec;
+  if (fs::is_regular_file(file, ec)) include_stack_.push_back(fs::weakly_canonical(file, ec).string());
   read_children(src, root, *s, 0, upgrade(src, root));
   resolve_refs();
 }
@@ -271,7 +274,8 @@ void Parser::include(Source& src, const pugi::xml_node& node, XmlObject& obj, in
   std::error_code canon_ec;
   const std::string canonical = fs::weakly_canonical(path, canon_ec).string();
   if (std::find(include_stack_.begin(), include_stack_.end(), canonical) != include_stack_.end()) {
-    fail(src, node, "the file " + path + " includes itself");
+    fail(src, node, "including " + path + " here makes a cycle: that file is being read already (it includes itself, "
+                    "directly or through other files)");
   }
   if (++includes_ > kMaxIncludes) fail(src, node, "more than " + std::to_string(kMaxIncludes) + " includes in all");
   std::error_code ec;
