@@ -137,14 +137,18 @@ std::string integrator_list() {
   return s;
 }
 
-// Each name of a comma-separated list of integrators.
+// Each item of a comma-separated list of integrators: a name, with settings after it
+// (photon:progressive=false, checked when the integrator is made), or only settings for the
+// scene's own integrator (:max_depth=3).
 const CLI::Validator kIntegratorName(
-    [](std::string& name) {
-      if (name.empty()) return std::string("an empty integrator name (write e.g. photon,path)");
-      if (name[0] == '-') {
+    [](std::string& item) {
+      if (item.empty()) return std::string("an empty integrator name (write e.g. photon,path)");
+      if (item[0] == '-') {
         // CLI11 lets a list that ends in its delimiter go on in the next argument.
-        return "expected integrator names (e.g. photon,path), not \"" + name + "\"";
+        return "expected integrator names (e.g. photon,path), not \"" + item + "\"";
       }
+      const std::string name = item.substr(0, item.find(':'));
+      if (name.empty()) return std::string();
       for (const auto& n : integrator_names()) {
         if (n == name) return std::string();
       }
@@ -270,10 +274,17 @@ int run_cli(int argc, char** argv) {
     return fail(std::string("error: ") + e.what(), 1);
   } catch (const std::bad_alloc&) {
     // What check_memory() did not foresee (it checks the large allocations before they are made).
-    const MemoryLimit limit = memory_limit();
-    return fail("error: out of memory" + (limit.what.empty() ? std::string() : " (" + limit.what + " leaves " + format_gib(double(limit.bytes)) + ")") +
-                    "; try a smaller image, fewer photons or fewer threads",
-                1);
+    // Describing the limit allocates too: if that fails as well, the message says less.
+    std::string message = "error: out of memory; try a smaller image, fewer photons or fewer threads";
+    try {
+      const MemoryLimit limit = memory_limit();
+      if (!limit.what.empty()) {
+        message = "error: out of memory (" + limit.what + " leaves " + format_gib(double(limit.bytes)) +
+                  "); try a smaller image, fewer photons or fewer threads";
+      }
+    } catch (...) {
+    }
+    return fail(message, 1);
   } catch (const std::exception& e) {
     return fail(std::string("internal error: ") + e.what(), 2);
   }

@@ -188,13 +188,18 @@ int run_converge(const ConvergeArgs& args) {
     report.facts.emplace_back(name, std::to_string(stats.passes) + " passes in " + std::to_string(total) + " s (" +
                                         std::to_string(pre) + " s preprocess)");
   }
-  // The handlers stay until the files are written (a signal meanwhile waits for them).
-  if (!root) return interrupted ? StopSignals::exit_code() : 0;
+  // The handlers stay until the files are written (a signal meanwhile waits for them). The other
+  // ranks wait for rank 0's files: an exit code other than 0 makes mpirun end the whole job.
+  if (!root) {
+    cluster.barrier();
+    return interrupted ? StopSignals::exit_code() : 0;
+  }
   report.images.insert(report.images.end(), error_images.begin(), error_images.end());
   write_file_atomically((fs::path(args.out_dir) / "convergence.csv").string(), convergence_csv(rows, has_floor ? std::optional<double>(combined.floor) : std::nullopt), "CSV");
   write_report(args.out_dir, report);
   if (!quiet) std::cout << "wrote " << (fs::path(args.out_dir) / "index.html").string() << "\n";
-  return interrupted ? StopSignals::exit_code() : 0;
+  cluster.barrier();
+  return interrupted || StopSignals::stopped() ? StopSignals::exit_code() : 0;
 }
 
 }  // namespace caustica

@@ -139,7 +139,8 @@ int run_render(const RenderArgs& args) {
     if (!args.common.quiet) std::cout << "error against " << args.reference << ":\n";
     std::cout << format_metrics(m, false);
   }
-  return stats.interrupted ? interrupted_code : 0;
+  // A signal while the outputs were written waited for them; it still ends with its code.
+  return stats.interrupted || StopSignals::stopped() ? StopSignals::exit_code() : 0;
 }
 
 }  // namespace caustica

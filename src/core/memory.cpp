@@ -19,6 +19,17 @@ uint64_t read_number(const std::string& path) {
   return v;
 }
 
+// The value of `key` in a cgroup's memory.stat ("key value" lines), or 0.
+uint64_t read_stat(const std::string& path, const std::string& key) {
+  std::ifstream in(path);
+  std::string name;
+  unsigned long long v = 0;
+  while (in >> name >> v) {
+    if (name == key) return v;
+  }
+  return 0;
+}
+
 // Field `index` (0-based) of /proc/self/statm, in bytes.
 uint64_t statm_bytes(int index) {
   std::ifstream in("/proc/self/statm");
@@ -35,7 +46,9 @@ void consider(MemoryLimit& best, uint64_t limit, uint64_t used, const std::strin
 }
 
 // The cgroup's limit and usage: v2 (a "0::/path" line) or v1 (a "N:memory:/path" line). A
-// container sees its own cgroup at the mount's root, so the root's files are tried too.
+// container sees its own cgroup at the mount's root, so the root's files are tried too. The
+// usage counts the page cache, whose inactive part the kernel gives back before it fails an
+// allocation: that part is not counted as used.
 void consider_cgroup(MemoryLimit& best) {
   std::ifstream in("/proc/self/cgroup");
   std::string line, v2, v1;
@@ -45,19 +58,20 @@ void consider_cgroup(MemoryLimit& best) {
     if (at != std::string::npos) v1 = line.substr(at + 8);
   }
   constexpr uint64_t kUnlimited = uint64_t(1) << 60;  // v1 writes about 2^63 for "no limit"
-  auto try_dir = [&](const std::string& dir, const char* limit_file, const char* usage_file, const char* name) {
+  auto try_dir = [&](const std::string& dir, const char* limit_file, const char* usage_file, const char* cache_key) {
     const uint64_t limit = read_number(dir + "/" + limit_file);
     if (limit == 0 || limit >= kUnlimited) return false;
-    consider(best, limit, read_number(dir + "/" + usage_file), std::string("the cgroup's memory limit (") + name + ")");
+    const uint64_t usage = read_number(dir + "/" + usage_file), cache = read_stat(dir + "/memory.stat", cache_key);
+    consider(best, limit, usage > cache ? usage - cache : 0, std::string("the cgroup's memory limit (") + limit_file + ")");
     return true;
   };
   if (!v2.empty()) {
-    if (try_dir("/sys/fs/cgroup" + v2, "memory.max", "memory.current", "memory.max")) return;
-    if (try_dir("/sys/fs/cgroup", "memory.max", "memory.current", "memory.max")) return;
+    if (try_dir("/sys/fs/cgroup" + v2, "memory.max", "memory.current", "inactive_file")) return;
+    if (try_dir("/sys/fs/cgroup", "memory.max", "memory.current", "inactive_file")) return;
   }
   if (!v1.empty()) {
-    if (try_dir("/sys/fs/cgroup/memory" + v1, "memory.limit_in_bytes", "memory.usage_in_bytes", "memory.limit_in_bytes")) return;
-    try_dir("/sys/fs/cgroup/memory", "memory.limit_in_bytes", "memory.usage_in_bytes", "memory.limit_in_bytes");
+    if (try_dir("/sys/fs/cgroup/memory" + v1, "memory.limit_in_bytes", "memory.usage_in_bytes", "total_inactive_file")) return;
+    try_dir("/sys/fs/cgroup/memory", "memory.limit_in_bytes", "memory.usage_in_bytes", "total_inactive_file");
   }
 }
 
@@ -83,7 +97,7 @@ std::string format_gib(double bytes) {
   if (bytes >= double(1 << 30)) {
     std::snprintf(text, sizeof text, "%.1f GiB", bytes / double(1 << 30));
   } else {
-    std::snprintf(text, sizeof text, "%.0f MiB", std::max(1.0, bytes / double(1 << 20)));
+    std::snprintf(text, sizeof text, "%.0f MiB", bytes / double(1 << 20));
   }
   return text;
 }

@@ -96,7 +96,7 @@ void Loader::read_camera(const json& j, const std::string& p) {
   if (j.contains("mirror")) camera.set_mirror(r.boolean(j["mirror"], child(p, "mirror")));
   if (j.contains("aperture_radius") || j.contains("focus_distance")) {
     const float radius = float(r.number_in(r.require(j, p, "aperture_radius"), child(p, "aperture_radius"), 0.0, kMaxCoordinate));
-    const double focus = r.number(r.require(j, p, "focus_distance"), child(p, "focus_distance"));
+    const double focus = r.number_in(r.require(j, p, "focus_distance"), child(p, "focus_distance"), 0.0, kMaxCoordinate);
     if (!(float(focus) > 0.0f)) r.fail(child(p, "focus_distance"), "focus_distance must be positive");
     camera.set_lens(radius, float(focus));
   }

@@ -111,9 +111,9 @@ Image read_image(const std::string& path) {
   const OIIO::ImageSpec& spec = in->spec();
   if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0) throw InputError(path + ": image has no pixels");
   const double values = double(spec.width) * double(spec.height) * double(spec.nchannels);
-  // PFM and the other PNM formats hold their values uncompressed (at least a byte each): one that
-  // declares more than it holds is refused before anything is allocated.
-  if (std::string(in->format_name()) == "pnm" && values * double(spec.format.size()) > double(fs::file_size(path, ec))) {
+  // PFM and the other PNM formats hold their values uncompressed (at least a bit each: P4): one
+  // that declares more than it holds is refused before anything is allocated.
+  if (std::string(in->format_name()) == "pnm" && values / 8.0 > double(fs::file_size(path, ec))) {
     throw InputError(path + ": the image declares " + std::to_string(spec.width) + " x " + std::to_string(spec.height) +
                      " pixels, more than the file holds");
   }

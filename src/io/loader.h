@@ -80,8 +80,8 @@ struct Loader {
   json mesh_material_json(const MeshMaterial& mm, const std::string& dir, const std::string& p);
 
   void add_triangle(std::vector<Primitive>& shapes, const Vec3& a, const Vec3& b, const Vec3& c, const std::string& p, const TriangleAttributes* attributes = nullptr);
-  // An error at `p` when an object reaches past kMaxCoordinate from the origin.
-  void check_reach(float reach, const std::string& p) const;
+  // An error at `p` when a point of an object lies past kMaxCoordinate (or is NaN).
+  void check_reach(const Vec3& x, const std::string& p) const;
 
   void add_mesh_triangle(const MeshData& mesh, size_t i, std::vector<Primitive>& shapes, const std::string& p);
 

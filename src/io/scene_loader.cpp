@@ -137,8 +137,11 @@ namespace {
 // Windows editors save them, would otherwise be reported as a JSON syntax error.
 void check_encoding(const std::string& text, const std::string& file) {
   auto starts = [&](const char* bom, size_t n) { return text.size() >= n && text.compare(0, n, bom, n) == 0; };
-  const bool wide = starts("\xFF\xFE", 2) || starts("\xFE\xFF", 2) || starts("\x00\x00\xFE\xFF", 4) ||
-                    (text.size() >= 2 && (text[0] == '\0' || text[1] == '\0'));
+  // Without a byte-order mark: "<" or "{" as UTF-16 or UTF-32 has a NUL beside it, which
+  // a file of zeros (not text at all, left to the syntax error) does not.
+  const bool nul_beside_text = (text.size() >= 2 && (text[0] == '\0') != (text[1] == '\0')) ||
+                               (text.size() >= 4 && text.compare(0, 3, "\0\0\0", 3) == 0 && text[3] != '\0');
+  const bool wide = starts("\xFF\xFE", 2) || starts("\xFE\xFF", 2) || starts("\x00\x00\xFE\xFF", 4) || nul_beside_text;
   if (wide) {
     throw InputError(file + ": the file is encoded as UTF-16 or UTF-32; scene files must be UTF-8 "
                             "(convert it, e.g. iconv -f UTF-16 -t UTF-8)");

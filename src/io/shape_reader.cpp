@@ -68,7 +68,8 @@ void Loader::add_object(std::vector<Primitive> shapes, uint32_t mat, const json&
   }
   Bounds b;
   for (const Primitive& s : shapes) b.extend(s.bounds());
-  check_reach(std::max(max_component(glm::abs(b.lo)), max_component(glm::abs(b.hi))), p);
+  check_reach(b.hi, p);
+  check_reach(b.lo, p);
   int32_t light = -1;
   for (Primitive& s : shapes) {
     s.material = mat;
@@ -99,13 +100,16 @@ void Loader::add_object(std::vector<Primitive> shapes, uint32_t mat, const json&
   scene().objects.push_back(info);
 }
 
-void Loader::check_reach(float reach, const std::string& p) const {
-  if (!(reach <= kMaxCoordinate)) r.fail(p, out_of_scene_range("the object reaches " + format_number(reach) + ", which"));
+void Loader::check_reach(const Vec3& x, const std::string& p) const {
+  // Coordinate by coordinate: a NaN (inf - inf from a transform) fails too.
+  for (int i = 0; i < 3; ++i) {
+    if (!(std::abs(x[i]) <= kMaxCoordinate)) r.fail(p, out_of_scene_range("the object reaches " + format_number(x[i]) + ", which"));
+  }
 }
 
 void Loader::add_triangle(std::vector<Primitive>& shapes, const Vec3& a, const Vec3& b, const Vec3& c, const std::string& p, const TriangleAttributes* attributes) {
   // Before the area test: a triangle out of range is an error, not a degenerate one.
-  check_reach(std::max({max_component(glm::abs(a)), max_component(glm::abs(b)), max_component(glm::abs(c))}), p);
+  for (const Vec3* v : {&a, &b, &c}) check_reach(*v, p);
   const float area2 = glm::length(glm::cross(b - a, c - a));
   if (!(area2 > 0.0f) || !std::isfinite(area2)) {
     ++degenerate_;

@@ -374,7 +374,7 @@ TEST_CASE("mesh files: a serialized shape is inflated only as far as its counts 
     const auto r = test::run_caustica("render scene.json -o out.png", dir, test::address_space_limit(2 << 20));
     CHECK(r.exit_code == 1);
     CHECK_THAT(r.err, Contains("bomb.serialized (268435456 vertices, 1 triangles) needs about ") &&
-                          Contains("GiB of memory; the address-space limit (ulimit -v) leaves "));
+                          Contains("GiB of memory; ") && Contains(" leaves "));
   }
   // Short of the counts and under 64 MiB, it is "truncated", whatever the memory.
   raw = serialized_raw(s, uint64_t(1) << 28, 1);

@@ -31,6 +31,12 @@ inline RunResult run_caustica(const std::string& args, const TempDir& dir, const
 // work: AddressSanitizer reserves terabytes of shadow address space at start-up.
 #if defined(__SANITIZE_ADDRESS__)
 constexpr bool kAddressSpaceLimits = false;
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)  // clang before 22 does not define __SANITIZE_ADDRESS__
+constexpr bool kAddressSpaceLimits = false;
+#else
+constexpr bool kAddressSpaceLimits = true;
+#endif
 #else
 constexpr bool kAddressSpaceLimits = true;
 #endif

@@ -9,6 +9,7 @@
 #include <zlib.h>
 #include "core/error.h"
 #include "core/memory.h"
+#include "core/shape.h"
 #include "io/meshes/mesh_file.h"
 
 namespace caustica {
@@ -156,10 +157,16 @@ MeshData parse_serialized(const std::string& bytes, const std::string& name, int
   const int per_vertex = 3 + ((flags & kVertexNormals) ? 3 : 0) + ((flags & kTexcoords) ? 2 : 0) + ((flags & kColors) ? 3 : 0);
   const double stream_bytes = double(in.position()) + double(nv) * per_vertex * real + double(nt) * 12.0;
   // The first 64 MiB unchecked: a file that declares more than it holds is then "truncated".
-  zlib.fill(data, std::min(size_t(stream_bytes), size_t(64) << 20));
-  if (data.size() < size_t(stream_bytes) && data.size() >= (size_t(64) << 20)) {
-    check_memory(stream_bytes + double(nv) * (12.0 + 4.0 * per_vertex) + double(nt) * (12.0 + sizeof(TriangleAttributes) + 4.0),
+  // Past them, the whole is checked first: the stream, our arrays, and per triangle what the
+  // scene makes of it (a primitive, its attributes, its share of the BVH).
+  constexpr size_t kUnchecked = size_t(64) << 20;
+  data.reserve(std::min(size_t(stream_bytes), kUnchecked));
+  zlib.fill(data, std::min(size_t(stream_bytes), kUnchecked));
+  if (data.size() < size_t(stream_bytes) && data.size() >= kUnchecked) {
+    const double per_triangle = 12.0 + 4.0 + 2.0 * sizeof(TriangleAttributes) + sizeof(Primitive) + 64.0;
+    check_memory(stream_bytes + double(nv) * (12.0 + 4.0 * per_vertex) + double(nt) * per_triangle,
                  name + " (" + std::to_string(nv) + " vertices, " + std::to_string(nt) + " triangles)");
+    data.reserve(size_t(stream_bytes));
     zlib.fill(data, size_t(stream_bytes));
   }
   // The stream must hold the positions and indices it declares before anything is allocated.

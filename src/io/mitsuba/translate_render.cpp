@@ -25,7 +25,10 @@ void Translator::sensor(const XmlObject& o) {
   const glm::dvec3 pos(m[3]), fwd(m * glm::dvec4(0, 0, 1, 0)), up(m * glm::dvec4(0, 1, 0, 0)),
       left(m * glm::dvec4(1, 0, 0, 0));
   if (!(glm::length(fwd) > 0.0) || !(glm::length(up) > 0.0)) throw InputError(props.get("to_world")->where + ": the camera transform is singular");
-  json cam = {{"position", vec(pos)}, {"look_at", vec(pos + glm::normalize(fwd))}, {"up", vec(glm::normalize(up))}};
+  // look_at one unit ahead, or further where the position is large: in floats, a point one unit
+  // from 1e5 would turn the view by a fraction of a degree (and from 2e7 not move at all).
+  const double ahead = std::max(1.0, std::max({std::abs(pos.x), std::abs(pos.y), std::abs(pos.z)}) / 256.0);
+  json cam = {{"position", vec(pos)}, {"look_at", vec(pos + ahead * glm::normalize(fwd))}, {"up", vec(glm::normalize(up))}};
   // Mitsuba's camera space has +x on the image's left; a transform that flips that mirrors the image.
   if (glm::dot(left, glm::cross(up, fwd)) < 0.0) cam["mirror"] = true;
   double fov = 0.0;
