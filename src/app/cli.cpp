@@ -258,11 +258,20 @@ int run_cli(int argc, char** argv) {
   try {
     if (render->parsed()) {
       render_flags.collect();
+      if (!args.integrator.empty() && args.integrator[0] != ':') {
+        args.common.mitsuba.integrator_replaced_by = "--integrator " + args.integrator;
+      }
       return run_render(args);
     }
     if (compare->parsed()) return run_compare(cargs);
     if (converge->parsed()) {
       converge_flags.collect();
+      // Every integrator named: the scene's own is not rendered.
+      if (std::none_of(vargs.integrators.begin(), vargs.integrators.end(), [](const std::string& s) { return s.empty() || s[0] == ':'; })) {
+        std::string names;
+        for (const std::string& s : vargs.integrators) names += (names.empty() ? "" : ",") + s;
+        vargs.common.mitsuba.integrator_replaced_by = "--integrators " + names;
+      }
       return run_converge(vargs);
     }
     if (photons->parsed()) {

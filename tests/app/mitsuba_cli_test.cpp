@@ -89,3 +89,29 @@ TEST_CASE("cli: --accel bvh and embree render the same scene alike and name the 
   const test::RunResult bad = test::run_caustica("render scene.xml --accel optix -o x.exr", dir);
   CHECK(bad.exit_code != 0);
 }
+
+TEST_CASE("cli: a scene's unknown integrator is not interpreted when the command line names one", "[app][mitsuba]") {
+  // Issue 24: 8 public scenes (bdpt, irrcache, guided_path, ...) stopped here even with --integrator.
+  test::TempDir dir;
+  dir.write("bdpt.xml", scene_with(R"(<integrator type="bdpt"><integer name="max_depth" value="3"/>
+    <boolean name="light_image" value="true"/></integrator>)"));
+  auto r = test::run_caustica("render bdpt.xml -o out.pfm --spp 2", dir);
+  CHECK(r.exit_code == 1);
+  CHECK(r.err.find("bdpt.xml:16:4: <integrator type=\"bdpt\">: unsupported integrator plugin \"bdpt\" (supported: ") !=
+        std::string::npos);
+  CHECK(r.err.find("render the scene with --integrator path or --integrator photon instead") != std::string::npos);
+  // Named on the command line: replaced, with a note, and its max_depth (3 segments: 2 bounces) kept.
+  r = test::run_caustica("render bdpt.xml -o out.pfm --spp 2 --integrator photon", dir);
+  INFO(r.err);
+  CHECK(r.exit_code == 0);
+  CHECK(r.err.find("warning: bdpt.xml:16:4: <integrator type=\"bdpt\">: the scene's integrator \"bdpt\" is replaced by "
+                   "--integrator photon; its max_depth 3 is kept") != std::string::npos);
+  CHECK(r.out.find("max_depth: 2\n") != std::string::npos);
+  CHECK(read_image(dir.file("out.pfm")).mean().x > 0.01f);
+  // converge naming every integrator replaces it too.
+  REQUIRE(test::run_caustica("render bdpt.xml -o ref.exr --spp 4 --integrator path -q", dir).exit_code == 0);
+  r = test::run_caustica("converge bdpt.xml --reference ref.exr --integrators path --time 0.3 --out report -q", dir);
+  INFO(r.err);
+  CHECK(r.exit_code == 0);
+  CHECK(r.err.find("is replaced by --integrators path") != std::string::npos);
+}

@@ -896,3 +896,37 @@ TEST_CASE("mitsuba: <default> values that double each other stop at 1 MiB, and l
   CHECK(echo.size() < 2 * InputError::kMaxLine);
   CHECK_THAT(echo, StartsWith("scene.xml:2:4: <shape type=\"nnnn") && Contains(" characters left out ...] "));
 }
+
+TEST_CASE("mitsuba: an area emitter declared with an id and referred to from shapes", "[mitsuba]") {
+  // Issue 24: <emitter type="area" id="e"/> at the top level was an error.
+  const std::string xml = xml_scene(R"(  <emitter type="area" id="lamp"><rgb name="radiance" value="4, 3, 2"/></emitter>
+  <shape type="sphere"><ref id="lamp"/></shape>
+  <shape type="sphere"><point name="center" value="3, 0, 0"/><ref id="lamp"/></shape>
+  <shape type="sphere"><point name="center" value="6, 0, 0"/></shape>)");
+  const json d = translate(xml);
+  REQUIRE(d["objects"].size() == 3);
+  for (int i = 0; i < 2; ++i) {
+    const json& m = d["materials"][d["objects"][i]["material"].get<std::string>()];
+    check_vec(m["emission"], {4, 3, 2}, 1e-6);
+  }
+  CHECK_FALSE(d["materials"][d["objects"][2]["material"].get<std::string>()].contains("emission"));
+  // Without an id nothing could refer to it: still an error.
+  CHECK_THAT(error_of([] { translate(xml_scene(R"(  <emitter type="area"/>)")); }),
+             Contains("an area emitter belongs inside a <shape> (or, with an id, is referred to from one)"));
+}
+
+TEST_CASE("mitsuba: with ignore_unsupported, media (the sensor's too) and subsurface are skipped", "[mitsuba]") {
+  // Issue 24: a medium inside the sensor, and <subsurface> inside a shape, were errors even then.
+  const std::string xml = xml_scene(R"(  <sensor type="perspective"><medium type="homogeneous"/></sensor>
+  <shape type="sphere"><medium type="homogeneous" name="interior"/><subsurface type="dipole"/></shape>)");
+  CHECK_THAT(error_of([&] { translate(xml); }), Contains("unsupported medium plugin \"homogeneous\""));
+  MitsubaOptions lenient;
+  lenient.ignore_unsupported = true;
+  const TranslatedScene t = read_mitsuba(xml, "scene.xml", ".", lenient);
+  CHECK(t.doc["objects"].size() == 1);
+  REQUIRE(t.warnings.size() == 3);
+  CHECK_THAT(t.warnings[0], StartsWith("scene.xml:2:31: <medium type=\"homogeneous\">: unsupported medium plugin") &&
+                                Contains("ignored (the camera sees without it)"));
+  CHECK_THAT(t.warnings[1], Contains("unsupported medium plugin") && Contains("the shape is rendered without it"));
+  CHECK_THAT(t.warnings[2], Contains("unsupported subsurface plugin \"dipole\"") && Contains("the shape's BSDF alone renders it"));
+}

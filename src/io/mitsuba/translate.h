@@ -15,6 +15,10 @@ struct MitsubaOptions {
   XmlOptions xml;
   // Unsupported plugins become warnings: the object is skipped or replaced (the warning says which).
   bool ignore_unsupported = false;
+  // Set when the command line chooses the integrator ("--integrator photon"): a scene's
+  // <integrator> of a type we do not have is then not interpreted (only its max_depth is kept),
+  // and a warning says it was replaced.
+  std::string integrator_replaced_by;
 };
 
 struct TranslatedScene {

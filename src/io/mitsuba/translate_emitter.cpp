@@ -20,7 +20,11 @@ const std::set<std::string>& mitsuba_emitters() {
 }  // namespace
 
 void Translator::emitter(const XmlObject& o) {
-  if (o.type == "area") throw InputError(o.where + ": an area emitter belongs inside a <shape>");
+  if (o.type == "area") {
+    // Declared with an id, it is drawn by the shapes that refer to it (<ref id="..."/>).
+    if (!o.id.empty()) return;
+    throw InputError(o.where + ": an area emitter belongs inside a <shape> (or, with an id, is referred to from one)");
+  }
   if (!mitsuba_emitters().count(o.type)) {
     unsupported(o, "emitter", mitsuba_emitters(), "skipped");
     return;

@@ -82,6 +82,7 @@ void Translator::sensor(const XmlObject& o) {
   for (const XmlChild& c : o.children) {
     if (c.object->tag == "film") film(*c.object);
     else if (c.object->tag == "sampler") sampler(*c.object);
+    else if (c.object->tag == "medium") unsupported(*c.object, "medium", {}, "ignored (the camera sees without it)");
     else bad_child(o, c);
   }
 }
@@ -187,6 +188,23 @@ void Translator::strict_normals(Props& props) {
 }
 
 void Translator::integrator(const XmlObject& o0) {
+  if (!options_.integrator_replaced_by.empty() && !kIntegrators.count(o0.type)) {
+    // One we do not have: not interpreted (its settings mean nothing to ours), but its path
+    // length is the scene's, and stays. (One we have is read as usual: --integrator photon on a
+    // photonmapper scene keeps its photon counts.)
+    std::string kept;
+    const XmlProperty* p = o0.prop("max_depth");
+    if (p && p->kind == XmlProperty::Integer) {
+      try {
+        out_.doc["render"]["max_depth"] = depth(p, -1);
+        note("/render/max_depth", p->where);
+        kept = "; its max_depth " + std::to_string(integer(*p)) + " is kept";
+      } catch (const InputError&) {
+      }
+    }
+    warn(o0.where, "the scene's integrator \"" + o0.type + "\" is replaced by " + options_.integrator_replaced_by + kept);
+    return;
+  }
   const XmlObject* o = &o0;
   while (o->type == "moment" || o->type == "aov") {
     const XmlObject* inner = nullptr;
@@ -266,6 +284,10 @@ void Translator::integrator(const XmlObject& o0) {
     }
     if (!ignored.empty()) warn(o->where, "settings without a counterpart here are ignored: " + ignored);
   } else {
+    if (!options_.ignore_unsupported) {
+      throw InputError(o->where + ": unsupported integrator plugin \"" + o->type + "\" (supported: " + list(kIntegrators) +
+                       "); render the scene with --integrator path or --integrator photon instead");
+    }
     unsupported(*o, "integrator", kIntegrators, "the path tracer renders instead");
     integ = {{"type", "path"}, {"rr_depth", 5}};
     doc["render"]["max_depth"] = kUnlimitedDepth;

@@ -43,6 +43,7 @@ void Translator::shape(const XmlObject& o, const glm::dmat4& parent) {
     if (c.object->tag == "bsdf" && !bsdf_obj) bsdf_obj = c.object;
     else if (c.object->tag == "emitter" && !area) area = c.object;
     else if (c.object->tag == "medium") unsupported(*c.object, "medium", {}, "ignored (the shape is rendered without it)");
+    else if (c.object->tag == "subsurface") unsupported(*c.object, "subsurface", {}, "ignored (the shape's BSDF alone renders it)");
     else bad_child(o, c);
   }
   json emission;
