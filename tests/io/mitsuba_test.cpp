@@ -159,7 +159,7 @@ TEST_CASE("mitsuba: a scene in XML renders bit-identically to the same scene in 
     "white": {"type": "diffuse", "reflectance": [0.7, 0.6, 0.5]},
     "checker": {"type": "diffuse", "reflectance": {"type": "checkerboard", "color0": [0.8, 0.8, 0.8],
                 "color1": [0.1, 0.2, 0.3], "to_uv": [[4, 0, 0], [0, 4, 0]]}},
-    "metal": {"type": "roughconductor", "material": "Au", "alpha": 0.2},
+    "metal": {"type": "roughconductor", "material": "Au", "alpha": 0.2, "distribution": "beckmann"},
     "default diffuse + emitter 1": {"type": "diffuse", "reflectance": 0.5, "emission": [4, 4, 4]}
   },
   "objects": [
@@ -929,4 +929,38 @@ TEST_CASE("mitsuba: with ignore_unsupported, media (the sensor's too) and subsur
                                 Contains("ignored (the camera sees without it)"));
   CHECK_THAT(t.warnings[1], Contains("unsupported medium plugin") && Contains("the shape is rendered without it"));
   CHECK_THAT(t.warnings[2], Contains("unsupported subsurface plugin \"dipole\"") && Contains("the shape's BSDF alone renders it"));
+}
+
+TEST_CASE("mitsuba: files named in an included file: its folder, the scene's, then <path> folders", "[mitsuba]") {
+  // Issue 24, item 4: Mitsuba's resolver order, and <path> in an included file relative to it.
+  test::TempDir dir;
+  namespace fs = std::filesystem;
+  fs::create_directories(dir.path() / "sub" / "tex");
+  const std::string tri = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+  dir.write("sub/near.obj", tri);      // next to the included file
+  dir.write("main.obj", tri);          // next to the scene only
+  dir.write("sub/tex/far.obj", tri);   // in the included file's <path> only
+  dir.write("near.obj", tri);          // also next to the scene: the included file's own wins
+  dir.write("sub/parts.xml", xml_scene(R"(  <path value="tex"/>
+  <shape type="obj"><string name="filename" value="near.obj"/></shape>
+  <shape type="obj"><string name="filename" value="main.obj"/></shape>
+  <shape type="obj"><string name="filename" value="far.obj"/></shape>)"));
+  const std::string main = dir.write("main.xml", loadable(R"(  <include filename="sub/parts.xml"/>)"));
+  const json d = read_mitsuba(test::read_text(main), main, dir.path().string(), {}).doc;
+  REQUIRE(d["objects"].size() == 3);
+  CHECK(fs::equivalent(d["objects"][0]["file"].get<std::string>(), dir.path() / "sub" / "near.obj"));
+  CHECK(fs::equivalent(d["objects"][1]["file"].get<std::string>(), dir.path() / "main.obj"));
+  CHECK(fs::equivalent(d["objects"][2]["file"].get<std::string>(), dir.path() / "sub" / "tex" / "far.obj"));
+}
+
+TEST_CASE("mitsuba: rough BSDFs default to Beckmann as in Mitsuba; a given distribution is kept", "[mitsuba]") {
+  // Issue 24, item 10: JSON scenes default to GGX; Mitsuba's scenes meant Beckmann.
+  for (const char* type : {"roughconductor", "roughdielectric", "roughplastic"}) {
+    INFO(type);
+    const json d = translate(xml_scene(std::string("  <bsdf type=\"") + type + "\" id=\"m\"/>\n  <bsdf type=\"" + type +
+                                       "\" id=\"g\"><string name=\"distribution\" value=\"ggx\"/></bsdf>"));
+    CHECK(d["materials"]["m"]["distribution"] == "beckmann");
+    CHECK(d["materials"]["g"]["distribution"] == "ggx");
+  }
+  CHECK_FALSE(translate(xml_scene("  <bsdf type=\"conductor\" id=\"c\"/>"))["materials"]["c"].contains("distribution"));
 }

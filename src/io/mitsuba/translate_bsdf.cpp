@@ -95,6 +95,10 @@ json Translator::bsdf(const XmlObject& o, const std::string& p) {
     }
     note(p + "/" + name, prop.where);
   }
+  // Mitsuba's rough plugins default to Beckmann (ours, in JSON scenes, to GGX).
+  if ((o.type == "roughconductor" || o.type == "roughdielectric" || o.type == "roughplastic") && !j.contains("distribution")) {
+    j["distribution"] = "beckmann";
+  }
   json nested = json::array();
   for (const XmlChild& c : o.children) {
     const XmlObject& k = *c.object;
