@@ -33,7 +33,7 @@ void Scene::build(std::vector<Primitive> prims) {
     if (!lights[i]->is_delta()) environment_.push_back(i);
   }
   std::vector<float> powers;
-  for (const auto& light : lights) powers.push_back(average(light->power()));
+  for (const auto& light : lights) powers.push_back(average(light->power()) * light->sampling_weight());
   light_distribution_ = Distribution1D(powers.data(), powers.size());
 }
 

@@ -102,6 +102,8 @@ struct Loader {
   MeshData read_mesh(const json& j, const std::string& p);
 
   void read_light(const json& j, const std::string& p);
+  // A light's or an emissive object's "sampling_weight" (positive).
+  float sampling_weight(const json& j, const std::string& p) const;
 
   size_t degenerate_ = 0;
   std::vector<Color> emission_{};  // by material id: the radiance of the area lights it makes

@@ -89,14 +89,21 @@ uint32_t Loader::material_ref(const json& obj, const std::string& p, const char*
   return it->second;
 }
 
+float Loader::sampling_weight(const json& j, const std::string& p) const {
+  const double w = r.number_in(j["sampling_weight"], child(p, "sampling_weight"), 0.0, 1e9);
+  if (!(w > 0.0)) r.fail(child(p, "sampling_weight"), "sampling_weight must be positive (a light never chosen adds nothing)");
+  return float(w);
+}
+
 void Loader::read_light(const json& j, const std::string& p) {
-  const LightPlugin& row = plugin_row(r, j, p, light_plugins(), "light", {"name"},
+  const LightPlugin& row = plugin_row(r, j, p, light_plugins(), "light", {"name", "sampling_weight"},
                                       "; area lights are objects with an emissive material");
   if (j.contains("name")) r.string(j["name"], child(p, "name"));
   // Lights read no nested BSDFs: `nested` stays empty (and may die with this call).
   std::vector<std::unique_ptr<Bsdf>> nested;
   const PluginContext ctx{r, base_dir, nested, scene().textures, out.warnings};
   scene().lights.push_back(row.create(JsonParams(ctx, j, p)));
+  if (j.contains("sampling_weight")) scene().lights.back()->set_sampling_weight(sampling_weight(j, p));
 }
 
 }  // namespace caustica::scene_loading

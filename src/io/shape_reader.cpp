@@ -20,7 +20,7 @@ const std::vector<ShapePlugin>& shape_plugins() {
 }
 
 void Loader::read_object(const json& j, const std::string& p) {
-  const ShapePlugin& row = plugin_row(r, j, p, shape_plugins(), "object", {"name", "material", "flip_normal"});
+  const ShapePlugin& row = plugin_row(r, j, p, shape_plugins(), "object", {"name", "material", "flip_normal", "sampling_weight"});
   std::vector<Primitive> shapes;
   if ((this->*row.read)(j, p, shapes)) return;
   if (j.contains("name")) r.string(j["name"], child(p, "name"));
@@ -61,6 +61,9 @@ bool Loader::read_quad(const json& j, const std::string& p, std::vector<Primitiv
 
 void Loader::add_object(std::vector<Primitive> shapes, uint32_t mat, const json& j, const std::string& p) {
   const bool flip = j.contains("flip_normal") && r.boolean(j["flip_normal"], child(p, "flip_normal"));
+  if (j.contains("sampling_weight") && is_black(emission_[mat])) {
+    r.fail(child(p, "sampling_weight"), "sampling_weight belongs to an object whose material emits");
+  }
   if (shapes.empty()) {
     if (!is_black(emission_[mat])) r.fail(p, "emissive object has zero area (all its triangles are degenerate)");
     r.warn(p, "object has no usable triangles and is left out", out.warnings);
@@ -79,6 +82,7 @@ void Loader::add_object(std::vector<Primitive> shapes, uint32_t mat, const json&
     light = static_cast<int32_t>(scene().lights.size());
     auto area_light = std::make_unique<AreaLight>(shapes, emission_[mat]);
     if (!(area_light->area() > 0.0f)) r.fail(p, "emissive object has zero area");
+    if (j.contains("sampling_weight")) area_light->set_sampling_weight(sampling_weight(j, p));
     scene().lights.push_back(std::move(area_light));
   }
   ObjectInfo info;

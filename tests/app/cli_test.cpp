@@ -315,6 +315,35 @@ TEST_CASE("cli: an environment map brighter than a scene may emit is refused", "
   CHECK(r.exit_code == 0);
 }
 
+TEST_CASE("cli: sampling_weight moves samples between lights, not the image's mean", "[app]") {
+  // Issue 24: chosen in proportion to power times weight, each estimate divided by the choice's
+  // probability: the same expectation in path and photon.
+  test::TempDir dir;
+  std::string scene(test::kLitFloorScene);
+  const std::string lights = R"(, "lights": [{"type": "point", "position": [1, 1.5, 0.5], "intensity": 2},
+    {"type": "point", "position": [-1, 1, 0], "intensity": 1W}])";
+  auto with = [&](const std::string& weight) {
+    std::string l = lights;
+    l.replace(l.find('W'), 1, weight);
+    std::string s = scene;
+    s.insert(s.rfind('}'), l);
+    return s;
+  };
+  dir.write("plain.json", with(""));
+  dir.write("weighted.json", with(", \"sampling_weight\": 8"));
+  for (const std::string integrator : {"path", "photon"}) {
+    INFO(integrator);
+    for (const std::string name : {"plain", "weighted"}) {
+      const auto r = run_caustica("render " + name + ".json --integrator " + integrator + " --spp 64 -o " + name + ".pfm -q", dir);
+      INFO(r.err);
+      REQUIRE(r.exit_code == 0);
+    }
+    const double plain = read_image(dir.file("plain.pfm")).mean().x, weighted = read_image(dir.file("weighted.pfm")).mean().x;
+    CHECK(plain > 0.05);
+    CHECK(weighted == Approx(plain).epsilon(0.03));
+  }
+}
+
 TEST_CASE("cli: a missing scene file and a folder as scene", "[app]") {
   test::TempDir dir;
   auto r = run_caustica("render nothing.json -o out.png", dir);

@@ -964,3 +964,13 @@ TEST_CASE("mitsuba: rough BSDFs default to Beckmann as in Mitsuba; a given distr
   }
   CHECK_FALSE(translate(xml_scene("  <bsdf type=\"conductor\" id=\"c\"/>"))["materials"]["c"].contains("distribution"));
 }
+
+TEST_CASE("mitsuba: sampling_weight of emitters and area emitters (samplingWeight in 0.6)", "[mitsuba]") {
+  const json d = translate(xml_scene(R"(  <emitter type="point"><float name="sampling_weight" value="3"/></emitter>
+  <emitter type="area" id="e"><float name="sampling_weight" value="0.5"/></emitter>
+  <shape type="sphere"><ref id="e"/></shape>)"));
+  CHECK(d["lights"][0]["sampling_weight"] == 3.0);
+  CHECK(d["objects"][0]["sampling_weight"] == 0.5);
+  const json old = translate(xml_scene(R"(  <emitter type="point"><float name="samplingWeight" value="2"/></emitter>)", "0.6.0"));
+  CHECK(old["lights"][0]["sampling_weight"] == 2.0);
+}

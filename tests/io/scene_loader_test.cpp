@@ -333,3 +333,27 @@ TEST_CASE("scene loader: a seed takes every value from 0 to 2^64 - 1, none clamp
   CHECK_THROWS_WITH(parse_scene(scene_text(objects, kMaterials, R"({"spp": 9223372036854775808})"), "s.json", "."),
                     Contains("/render/spp: value 9223372036854775808 is out of range"));
 }
+
+TEST_CASE("scene loader: sampling_weight scales how often a light is chosen", "[io][scene_loader]") {
+  // Issue 24 (Mitsuba's sampling_weight): chosen in proportion to power times weight.
+  const std::string objects = "[" + kSphere + ",\n" +
+                              R"({"type": "quad", "origin": [0, 2, 0], "edge1": [1, 0, 0], "edge2": [0, 0, 1], "material": "light", "sampling_weight": 2}])";
+  std::string text = scene_text(objects);
+  text.insert(text.rfind('}'), R"(, "lights": [{"type": "point", "position": [0, 3, 0], "intensity": 1},
+    {"type": "point", "position": [1, 3, 0], "intensity": 1, "sampling_weight": 3}])");
+  const LoadedScene loaded = parse(text);
+  const Scene& s = *loaded.scene;
+  REQUIRE(s.lights.size() == 3);
+  // Powers: the quad pi * 1 * mean(1, 2, 3) = 2 pi, weighted 2; each point light 4 pi, weighted 1 and 3.
+  const double pi = 3.14159265358979323846;
+  const double w0 = 2.0 * 2.0 * pi, w1 = 4.0 * pi, w2 = 3.0 * 4.0 * pi, sum = w0 + w1 + w2;
+  CHECK(s.light_pmf(0) == Approx(w0 / sum));
+  CHECK(s.light_pmf(1) == Approx(w1 / sum));
+  CHECK(s.light_pmf(2) == Approx(w2 / sum));
+  // Zero, negative, and on an object that does not emit: errors.
+  std::string zero = scene_text("[" + kSphere + "]");
+  zero.insert(zero.rfind('}'), R"(, "lights": [{"type": "point", "position": [0, 3, 0], "intensity": 1, "sampling_weight": 0}])");
+  REQUIRE_THROWS_WITH(parse(zero), Contains("test.json: /lights/0/sampling_weight: sampling_weight must be positive"));
+  const std::string dark = scene_text(R"([{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "white", "sampling_weight": 2}])");
+  REQUIRE_THROWS_WITH(parse(dark), Contains("test.json: /objects/0/sampling_weight: sampling_weight belongs to an object whose material emits"));
+}

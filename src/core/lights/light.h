@@ -57,6 +57,15 @@ class Light {
   // An infinite light's direction of travel for photons and the radiance (irradiance for a
   // delta direction) divided by the direction's density.
   virtual bool sample_travel(const Vec2& /*u*/, Vec3& /*dir*/, Color& /*value*/) const { return false; }
+
+  // Mitsuba's sampling_weight: lights are chosen (for shadow rays and photons) in proportion to
+  // their power times this weight; estimates divide by the probability, so the image's
+  // expectation does not change, only where the samples go.
+  float sampling_weight() const { return sampling_weight_; }
+  void set_sampling_weight(float w) { sampling_weight_ = w; }
+
+ private:
+  float sampling_weight_ = 1.0f;
 };
 
 // Lights at infinity keep the scene's bounding sphere: their photons start outside it.

@@ -90,6 +90,10 @@ void Translator::emitter(const XmlObject& o) {
   if (o.type != "spot" && o.type != "point" && o.type != "directional" && o.type != "envmap" && tw) {
     throw InputError(tw->where + ": a " + o.type + " emitter has no to_world");
   }
+  if (const XmlProperty* w = props.get("sampling_weight")) {
+    l["sampling_weight"] = number(*w);
+    note(p + "/sampling_weight", w->where);
+  }
   refuse_unused(o, props);
   for (const XmlChild& c : o.children) bad_child(o, c);
   lights.push_back(l);

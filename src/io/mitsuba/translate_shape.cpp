@@ -47,12 +47,15 @@ void Translator::shape(const XmlObject& o, const glm::dmat4& parent) {
     else bad_child(o, c);
   }
   json emission;
+  const XmlProperty* weight = nullptr;
   if (area) {
     if (area->type != "area") throw InputError(area->where + ": only an \"area\" emitter can be attached to a shape");
     Props ap(*area);
     const XmlProperty* r = ap.get("radiance");
     emission = r ? color_json(*r, SpectrumUse::Emission) : default_emission();
     if (r) note(p + "/material/emission", r->where);
+    weight = ap.get("sampling_weight");
+    if (weight) note(p + "/sampling_weight", weight->where);
     refuse_unused(*area, ap);
     for (const XmlChild& c : area->children) {
       throw InputError(c.where + ": a textured area emitter is not supported (a constant radiance is)");
@@ -173,6 +176,7 @@ void Translator::shape(const XmlObject& o, const glm::dmat4& parent) {
       if (const XmlProperty* t = o.prop("to_world")) note(p + "/to_world", t->where);
     }
   }
+  if (weight) obj["sampling_weight"] = number(*weight);
   refuse_unused(o, props);
   objects.push_back(obj);
 }
