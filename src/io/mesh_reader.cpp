@@ -142,7 +142,11 @@ MeshData Loader::read_mesh(const json& j, const std::string& p) {
   const glm::mat4 to_world = has_matrix ? read_affine(j["to_world"], child(p, "to_world")) : glm::mat4(1.0f);
   const glm::mat3 normal_matrix = glm::transpose(glm::inverse(glm::mat3(to_world)));
   const bool face_normals = j.contains("face_normals") && r.boolean(j["face_normals"], child(p, "face_normals"));
-  if (j.contains("smooth_normals") && r.boolean(j["smooth_normals"], child(p, "smooth_normals"))) {
+  if (j.contains("max_smooth_angle")) {
+    const double degrees = r.number_in(j["max_smooth_angle"], child(p, "max_smooth_angle"), 0.0, 180.0);
+    if (face_normals) r.fail(child(p, "max_smooth_angle"), "max_smooth_angle and face_normals exclude each other");
+    rebuild_normals_with_creases(mesh, degrees);
+  } else if (j.contains("smooth_normals") && r.boolean(j["smooth_normals"], child(p, "smooth_normals"))) {
     if (face_normals) r.fail(child(p, "smooth_normals"), "smooth_normals and face_normals exclude each other");
     add_smooth_normals(mesh);
   }

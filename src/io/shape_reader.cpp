@@ -13,7 +13,7 @@ const std::vector<ShapePlugin>& shape_plugins() {
       {"quad", {"origin", "edge1", "edge2"}, &Loader::read_quad},
       {"mesh",
        {"vertices", "indices", "normals", "uvs", "file", "shape_index", "scale", "translate", "to_world", "face_normals",
-        "default_material", "smooth_normals"},
+        "default_material", "smooth_normals", "max_smooth_angle"},
        &Loader::read_mesh_object},
   };
   return table;

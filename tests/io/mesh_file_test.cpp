@@ -564,3 +564,41 @@ TEST_CASE("mesh files: smooth normals average the faces around a vertex by area"
   CHECK(m.attributes[0].has_normals);
   CHECK_FALSE(m.attributes[0].has_uvs);
 }
+
+TEST_CASE("mesh files: max_smooth_angle keeps creases sharper than the angle, smooths the rest", "[mesh]") {
+  // Issue 24 (Mitsuba 0.6's maxSmoothAngle): a floor triangle (normal +y) and a wall triangle
+  // (normal +z) of equal area sharing the edge from vertex 0 to 1, at 90 degrees; the file's own
+  // normals (all +x) are dropped.
+  test::TempDir dir;
+  const std::string path = dir.write("crease.obj", "v 0 0 0\nv 1 0 0\nv 0 0 -1\nv 0 1 0\nvn 1 0 0\n"
+                                                  "f 1//1 2//1 3//1\nf 1//1 2//1 4//1\n");
+  MeshData sharp = read_mesh_file(path);
+  REQUIRE(sharp.tris.size() == 2);
+  rebuild_normals_with_creases(sharp, 60.0);
+  for (int k = 0; k < 3; ++k) {
+    CHECK(glm::length(sharp.attributes[0].n[k] - Vec3(0, 1, 0)) < 1e-6f);
+    CHECK(glm::length(sharp.attributes[1].n[k] - Vec3(0, 0, 1)) < 1e-6f);
+  }
+  MeshData smooth = read_mesh_file(path);
+  rebuild_normals_with_creases(smooth, 100.0);
+  const Vec3 mean = glm::normalize(Vec3(0, 1, 1));
+  // The shared vertices (0 and 1) average both faces; the others see only their own.
+  CHECK(glm::length(smooth.attributes[0].n[0] - mean) < 1e-6f);
+  CHECK(glm::length(smooth.attributes[0].n[1] - mean) < 1e-6f);
+  CHECK(glm::length(smooth.attributes[0].n[2] - Vec3(0, 1, 0)) < 1e-6f);
+  CHECK(glm::length(smooth.attributes[1].n[2] - Vec3(0, 0, 1)) < 1e-6f);
+  // Through a scene and from a 0.6 Mitsuba scene; with face_normals it is an error.
+  dir.write("scene.json", R"({"camera": {"position": [0, 0, 5], "look_at": [0, 0, 0]}, "materials": {"m": {"type": "diffuse"}},
+    "objects": [{"type": "mesh", "file": "crease.obj", "material": "m", "max_smooth_angle": 60}]})");
+  CHECK(load_scene(dir.file("scene.json")).scene->attributes.size() == 2);
+  dir.write("both.json", R"({"camera": {"position": [0, 0, 5], "look_at": [0, 0, 0]}, "materials": {"m": {"type": "diffuse"}},
+    "objects": [{"type": "mesh", "file": "crease.obj", "material": "m", "max_smooth_angle": 60, "face_normals": true}]})");
+  CHECK_THAT(error_of([&] { load_scene(dir.file("both.json")); }),
+             Contains("/objects/0/max_smooth_angle: max_smooth_angle and face_normals exclude each other"));
+  const std::string xml = dir.write("old.xml", R"(<scene version="0.6.0">
+  <shape type="obj"><string name="filename" value="crease.obj"/><float name="maxSmoothAngle" value="30"/></shape>
+</scene>)");
+  const nlohmann::json d = read_mitsuba(test::read_text(xml), xml, dir.path().string(), {}).doc;
+  CHECK(d["objects"][0]["max_smooth_angle"] == 30.0);
+  CHECK_FALSE(d["objects"][0].contains("smooth_normals"));
+}

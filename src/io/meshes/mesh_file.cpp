@@ -49,6 +49,39 @@ void add_smooth_normals(MeshData& mesh) {
   }
 }
 
+void rebuild_normals_with_creases(MeshData& mesh, double max_degrees) {
+  const size_t nt = mesh.tris.size();
+  std::vector<Vec3> face(nt, Vec3(0.0f));  // area-weighted (twice the area)
+  std::vector<std::vector<uint32_t>> around(mesh.verts.size());
+  for (size_t i = 0; i < nt; ++i) {
+    const glm::ivec3& t = mesh.tris[i];
+    const Vec3 n = glm::cross(mesh.verts[size_t(t[1])] - mesh.verts[size_t(t[0])], mesh.verts[size_t(t[2])] - mesh.verts[size_t(t[0])]);
+    if (is_finite(n)) face[i] = n;
+    for (int k = 0; k < 3; ++k) around[size_t(t[k])].push_back(uint32_t(i));
+  }
+  const float cos_max = float(std::cos(max_degrees * 3.14159265358979323846 / 180.0));
+  mesh.attributes.resize(nt);
+  for (size_t i = 0; i < nt; ++i) {
+    TriangleAttributes& a = mesh.attributes[i];
+    a.has_normals = false;
+    const float len_i = glm::length(face[i]);
+    if (!(len_i > 0.0f) || !std::isfinite(len_i)) continue;
+    const Vec3 ni = face[i] / len_i;
+    bool ok = true;
+    for (int k = 0; k < 3 && ok; ++k) {
+      Vec3 sum(0.0f);
+      for (uint32_t f : around[size_t(mesh.tris[i][k])]) {
+        const float len = glm::length(face[f]);
+        if (len > 0.0f && glm::dot(face[f] / len, ni) >= cos_max) sum += face[f];
+      }
+      const float len = glm::length(sum);
+      ok = len > 0.0f && std::isfinite(len);
+      a.n[k] = ok ? sum / len : Vec3(0.0f);
+    }
+    a.has_normals = ok;
+  }
+}
+
 MeshData read_mesh_file(const std::string& path, int shape_index) {
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) throw InputError("mesh file not found: tried " + path);

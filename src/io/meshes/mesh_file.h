@@ -35,6 +35,11 @@ void set_vertex_attributes(MeshData& mesh, const std::vector<Vec3>& normals, con
 // without normals, unless face_normals); a vertex whose normals cancel leaves its triangles flat.
 void add_smooth_normals(MeshData& mesh);
 
+// Mitsuba 0.6's maxSmoothAngle: every triangle's normals rebuilt (the file's dropped), each
+// corner's the area-weighted mean of the faces around its vertex whose normals lie within
+// `max_degrees` of this face's, so that creases sharper than that stay sharp.
+void rebuild_normals_with_creases(MeshData& mesh, double max_degrees);
+
 // Reads by the extension (.obj, .ply, .serialized).
 // `shape_index` picks one shape of a .serialized file holding several.
 MeshData read_mesh_file(const std::string& path, int shape_index = 0);

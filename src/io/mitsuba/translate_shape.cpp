@@ -127,8 +127,7 @@ void Translator::shape(const XmlObject& o, const glm::dmat4& parent) {
         // Mitsuba flips OBJ's v by default (as we do) and not PLY's or serialized's.
         if (boolean(*ft) != (o.type == "obj")) unsupported_property(*ft, "ignored");
       }
-      props.ignore({"collapse", "max_smooth_angle"});
-      if (o.prop("max_smooth_angle")) unsupported_property(*o.prop("max_smooth_angle"), "ignored (the file's normals are used)");
+      props.ignore({"collapse"});
     } else if (o.type == "rectangle") {
       obj.update(rectangle_mesh());
     } else if (o.type == "cube") {
@@ -166,9 +165,13 @@ void Translator::shape(const XmlObject& o, const glm::dmat4& parent) {
     if ((o.type == "rectangle" || o.type == "disk" || o.type == "cylinder") && glm::determinant(glm::dmat3(full)) < 0.0) {
       obj["flip_normal"] = !(obj.contains("flip_normal") && obj["flip_normal"].get<bool>());
     }
-    // Mitsuba computes smooth vertex normals for a mesh file without them (unless face_normals).
-    if ((o.type == "obj" || o.type == "ply" || o.type == "serialized") &&
-        !(obj.contains("face_normals") && obj["face_normals"].get<bool>())) {
+    // Mitsuba computes smooth vertex normals for a mesh file without them (unless face_normals);
+    // 0.6's maxSmoothAngle rebuilds them all, keeping creases sharper than the angle.
+    const bool mesh_file = o.type == "obj" || o.type == "ply" || o.type == "serialized";
+    if (const XmlProperty* a = mesh_file ? props.get("max_smooth_angle") : nullptr) {
+      obj["max_smooth_angle"] = number(*a);
+      note(p + "/max_smooth_angle", a->where);
+    } else if (mesh_file && !(obj.contains("face_normals") && obj["face_normals"].get<bool>())) {
       obj["smooth_normals"] = true;
     }
     if (full != glm::dmat4(1.0)) {
