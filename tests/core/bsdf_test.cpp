@@ -809,3 +809,47 @@ TEST_CASE("TwoSided: the back BSDF sees directions mirrored into its upper hemis
     REQUIRE(s.weight == back.albedo());
   }
 }
+
+TEST_CASE("dielectrics: specular_reflectance and specular_transmittance scale each side's light", "[bsdf]") {
+  // Issue 24 (Mitsuba's dielectric parameters): a tint changes the weights, not the directions.
+  DielectricTint tint;
+  tint.reflect = Color(0.5f, 0.25f, 1.0f);
+  tint.transmit = Color(1.0f, 0.0f, 0.5f);
+  const Vec3 wo = glm::normalize(Vec3(0.3f, -0.2f, 0.8f));
+  BsdfSample plain[2], tinted[2];
+  SECTION("smooth and thin") {
+    const Dielectric a(1.5f, FresnelModel::Exact), b(1.5f, FresnelModel::Exact, tint);
+    REQUIRE(a.specular_lobes(wo, plain) == 2);
+    REQUIRE(b.specular_lobes(wo, tinted) == 2);
+    CHECK(glm::length(tinted[0].weight - plain[0].weight * tint.reflect.value) < 1e-7f);
+    CHECK(glm::length(tinted[1].weight - plain[1].weight * tint.transmit.value) < 1e-7f);
+    CHECK(tinted[1].wi == plain[1].wi);
+    CHECK(b.albedo() == Color(1.0f, 0.25f, 1.0f));
+    const ThinDielectric c(1.5f), d(1.5f, tint);
+    REQUIRE(c.specular_lobes(wo, plain) == 2);
+    REQUIRE(d.specular_lobes(wo, tinted) == 2);
+    CHECK(glm::length(tinted[0].weight - plain[0].weight * tint.reflect.value) < 1e-7f);
+    CHECK(glm::length(tinted[1].weight - plain[1].weight * tint.transmit.value) < 1e-7f);
+  }
+  SECTION("rough: eval scaled by side, pdf unchanged, sampled weight = f cos / pdf") {
+    const MicrofacetDistribution dist(MicrofacetType::GGX, 0.3f, 0.3f);
+    const RoughDielectric a(dist, 1.5f), b(dist, 1.5f, tint);
+    Rng rng(7);
+    int reflected = 0, transmitted = 0;
+    for (int i = 0; i < 200; ++i) {
+      BsdfSample s;
+      const Vec2 u(rng.next_float(), rng.next_float());
+      const float u_lobe = rng.next_float();
+      if (!b.sample(wo, u, u_lobe, s)) continue;
+      const bool reflection = s.wi.z * wo.z > 0.0f;
+      (reflection ? reflected : transmitted)++;
+      const Color scale = reflection ? tint.reflect.value : tint.transmit.value;
+      CHECK(glm::length(b.eval(wo, s.wi) - a.eval(wo, s.wi) * scale) <= 1e-5f * (1.0f + glm::length(a.eval(wo, s.wi))));
+      CHECK(b.pdf(wo, s.wi) == a.pdf(wo, s.wi));
+      const Color expected = b.eval(wo, s.wi) * (std::abs(s.wi.z) / b.pdf(wo, s.wi));
+      CHECK(glm::length(s.weight - expected) <= 1e-4f * (1.0f + glm::length(expected)));
+    }
+    CHECK(reflected > 0);
+    CHECK(transmitted > 0);
+  }
+}

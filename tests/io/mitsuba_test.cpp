@@ -974,3 +974,25 @@ TEST_CASE("mitsuba: sampling_weight of emitters and area emitters (samplingWeigh
   const json old = translate(xml_scene(R"(  <emitter type="point"><float name="samplingWeight" value="2"/></emitter>)", "0.6.0"));
   CHECK(old["lights"][0]["sampling_weight"] == 2.0);
 }
+
+TEST_CASE("mitsuba: dielectrics take specular_reflectance and specular_transmittance, as colours or textures", "[mitsuba]") {
+  // Issue 24: they were unknown keys of our dielectrics.
+  const std::string xml = loadable(R"(  <bsdf type="dielectric" id="tinted"><rgb name="specular_transmittance" value="0.2, 0.8, 0.4"/></bsdf>
+  <bsdf type="roughdielectric" id="frosted"><texture type="checkerboard" name="specular_reflectance"/></bsdf>
+  <bsdf type="thindielectric" id="pane"><float name="specular_reflectance" value="0.5"/></bsdf>
+  <shape type="sphere"><ref id="tinted"/></shape>
+  <shape type="sphere"><point name="center" value="3, 0, 0"/><ref id="frosted"/></shape>
+  <shape type="sphere"><point name="center" value="6, 0, 0"/><ref id="pane"/></shape>)");
+  const LoadedScene loaded = parse_scene(xml, "scene.xml", ".");
+  REQUIRE(loaded.scene->materials.size() >= 3);
+  // The tint shows in the albedo photons are kept by: the larger of the two scales.
+  const Bsdf* tinted = nullptr;
+  for (size_t i = 0; i < loaded.scene->materials.size(); ++i) {
+    if (loaded.scene->material_names[i] == "tinted") tinted = loaded.scene->materials[i].get();
+  }
+  REQUIRE(tinted != nullptr);
+  CHECK(tinted->albedo() == Color(1.0f));
+  const std::string bad = loadable(R"(  <bsdf type="dielectric" id="d"><rgb name="specular_transmittance" value="-1, 0, 0"/></bsdf>
+  <shape type="sphere"><ref id="d"/></shape>)");
+  CHECK_THAT(error_of([&] { parse_scene(bad, "scene.xml", "."); }), Contains("specular_transmittance"));
+}

@@ -53,6 +53,15 @@ ConductorIor read_conductor(const Params& p) {
   return ior;
 }
 
+DielectricTint read_dielectric_tint(const Params& p) {
+  DielectricTint t;
+  t.reflect = p.texture("specular_reflectance", Color(1.0f));
+  t.transmit = p.texture("specular_transmittance", Color(1.0f));
+  check_albedo(p, "specular_reflectance", t.reflect);
+  check_albedo(p, "specular_transmittance", t.transmit);
+  return t;
+}
+
 void check_albedo(const Params& p, const std::string& key, const ColorParam& c) {
   if (!c.texture && max_component(c.value) > 1.0f) {
     p.warn(key, key + " above 1 reflects more than it receives (energy is created)");

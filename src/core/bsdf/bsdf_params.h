@@ -3,6 +3,7 @@
 // for an albedo that creates energy.
 #pragma once
 #include "core/bsdf/conductor.h"
+#include "core/bsdf/dielectric.h"
 #include "core/bsdf/microfacet.h"
 #include "core/params.h"
 
@@ -16,6 +17,9 @@ float read_eta(const Params& p, float int_default);
 MicrofacetDistribution read_distribution(const Params& p);
 // material (a named conductor) or eta and k; default Mitsuba's "none", a perfect mirror.
 ConductorIor read_conductor(const Params& p);
+// Mitsuba's specular_reflectance and specular_transmittance of a dielectric: colours or
+// textures that scale its reflected and its transmitted light (default 1, which changes nothing).
+DielectricTint read_dielectric_tint(const Params& p);
 // Warns when a constant reflectance above 1 would create energy.
 void check_albedo(const Params& p, const std::string& key, const ColorParam& c);
 

@@ -26,16 +26,19 @@ bool Dielectric::refract(const Vec3& wo, Vec3& wt) const {
   return caustica::refract(wo, n, wo.z > 0.0f ? eta_ : 1.0f / eta_, wt);
 }
 
-int Dielectric::specular_lobes(const Vec3& wo, BsdfSample* out, const ShadingPoint&) const {
+int Dielectric::specular_lobes(const Vec3& wo, BsdfSample* out, const ShadingPoint& sp) const {
   if (wo.z == 0.0f) return 0;
   Vec3 wt;
   if (!refract(wo, wt)) {
     out[0] = delta_sample(reflect_local(wo), 1.0f, kBsdfReflection);
+    out[0].weight *= tint_.reflect.at(sp.uv);
     return 1;
   }
   const float f = reflectance(wo);
   out[0] = delta_sample(reflect_local(wo), f, kBsdfReflection);
   out[1] = delta_sample(wt, 1.0f - f, kBsdfTransmission);
+  out[0].weight *= tint_.reflect.at(sp.uv);
+  out[1].weight *= tint_.transmit.at(sp.uv);
   return 2;
 }
 
@@ -44,11 +47,13 @@ float ThinDielectric::reflectance(float cos_i) const {
   return r < 1.0f ? 2.0f * r / (1.0f + r) : 1.0f;
 }
 
-int ThinDielectric::specular_lobes(const Vec3& wo, BsdfSample* out, const ShadingPoint&) const {
+int ThinDielectric::specular_lobes(const Vec3& wo, BsdfSample* out, const ShadingPoint& sp) const {
   if (wo.z == 0.0f) return 0;
   const float r = reflectance(std::abs(wo.z));
   out[0] = delta_sample(reflect_local(wo), r, kBsdfReflection);
   out[1] = delta_sample(-wo, 1.0f - r, kBsdfTransmission);
+  out[0].weight *= tint_.reflect.at(sp.uv);
+  out[1].weight *= tint_.transmit.at(sp.uv);
   return 2;
 }
 
@@ -65,16 +70,16 @@ bool RoughDielectric::half_vector(const Vec3& wo, const Vec3& wi, Vec3& wm, floa
   return glm::dot(wm, wi) * wi.z > 0.0f && glm::dot(wm, wo) * wo.z > 0.0f;
 }
 
-Color RoughDielectric::eval(const Vec3& wo, const Vec3& wi, const ShadingPoint&) const {
+Color RoughDielectric::eval(const Vec3& wo, const Vec3& wi, const ShadingPoint& sp) const {
   Vec3 wm;
   float etap;
   if (!half_vector(wo, wi, wm, etap)) return Color(0.0f);
   const float F = fresnel_dielectric(std::abs(glm::dot(wo, wm)), wo.z > 0.0f ? eta_ : 1.0f / eta_);
   const float dg = dist_.D(wm) * dist_.G(wo, wi);
-  if (wo.z * wi.z > 0.0f) return Color(F * dg / std::abs(4.0f * wo.z * wi.z));
+  if (wo.z * wi.z > 0.0f) return Color(F * dg / std::abs(4.0f * wo.z * wi.z)) * tint_.reflect.at(sp.uv);
   const float denom = glm::dot(wi, wm) + glm::dot(wo, wm) / etap;
   const float ft = (1.0f - F) * dg * std::abs(glm::dot(wi, wm) * glm::dot(wo, wm) / (denom * denom * wi.z * wo.z));
-  return Color(ft);
+  return Color(ft) * tint_.transmit.at(sp.uv);
 }
 
 float RoughDielectric::pdf(const Vec3& wo, const Vec3& wi, const ShadingPoint&) const {
@@ -88,7 +93,7 @@ float RoughDielectric::pdf(const Vec3& wo, const Vec3& wi, const ShadingPoint&) 
   return pm * std::abs(glm::dot(wi, wm)) / (denom * denom) * (1.0f - F);
 }
 
-bool RoughDielectric::sample(const Vec3& wo, const Vec2& u, float u_lobe, BsdfSample& s, const ShadingPoint&) const {
+bool RoughDielectric::sample(const Vec3& wo, const Vec2& u, float u_lobe, BsdfSample& s, const ShadingPoint& sp) const {
   if (wo.z == 0.0f) return false;
   const Vec3 wm = dist_.sample_visible(wo, u);
   const float cos_om = glm::dot(wo, wm);
@@ -105,13 +110,14 @@ bool RoughDielectric::sample(const Vec3& wo, const Vec2& u, float u_lobe, BsdfSa
   }
   s.pdf = pdf(wo, s.wi);
   if (!(s.pdf > 0.0f)) return false;
-  s.weight = eval(wo, s.wi) * (std::abs(s.wi.z) / s.pdf);
+  s.weight = eval(wo, s.wi, sp) * (std::abs(s.wi.z) / s.pdf);
   s.delta = false;
   return true;
 }
 
 std::unique_ptr<Bsdf> Dielectric::create(const Params& p) {
-  return std::make_unique<Dielectric>(read_eta(p, 1.5046f), FresnelModel::Exact);
+  const float eta = read_eta(p, 1.5046f);
+  return std::make_unique<Dielectric>(eta, FresnelModel::Exact, read_dielectric_tint(p));
 }
 
 std::unique_ptr<Bsdf> Dielectric::create_glass(const Params& p) {
@@ -126,11 +132,14 @@ std::unique_ptr<Bsdf> Dielectric::create_glass(const Params& p) {
 }
 
 std::unique_ptr<Bsdf> ThinDielectric::create(const Params& p) {
-  return std::make_unique<ThinDielectric>(read_eta(p, 1.5046f));
+  const float eta = read_eta(p, 1.5046f);
+  return std::make_unique<ThinDielectric>(eta, read_dielectric_tint(p));
 }
 
 std::unique_ptr<Bsdf> RoughDielectric::create(const Params& p) {
-  return std::make_unique<RoughDielectric>(read_distribution(p), read_eta(p, 1.5046f));
+  const MicrofacetDistribution dist = read_distribution(p);
+  const float eta = read_eta(p, 1.5046f);
+  return std::make_unique<RoughDielectric>(dist, eta, read_dielectric_tint(p));
 }
 
 }  // namespace caustica

@@ -11,15 +11,23 @@
 
 namespace caustica {
 
+// What scales a dielectric's reflected and transmitted light (Mitsuba's specular_reflectance and
+// specular_transmittance; 1 for physical glass).
+struct DielectricTint {
+  ColorParam reflect{Color(1.0f)}, transmit{Color(1.0f)};
+  // The larger scale at uv: what a photon's Russian roulette takes as the surface's albedo.
+  Color albedo(const Vec2& uv) const { return glm::max(reflect.at(uv), transmit.at(uv)); }
+};
+
 class Dielectric final : public SpecularBsdf {
  public:
   static std::unique_ptr<Bsdf> create(const Params& p);
   // Our `glass`: one index `ior` and a choice of Fresnel model (exact or schlick).
   static std::unique_ptr<Bsdf> create_glass(const Params& p);
-  Dielectric(float eta, FresnelModel model) : eta_(eta), model_(model) {}
+  Dielectric(float eta, FresnelModel model, const DielectricTint& tint = {}) : eta_(eta), model_(model), tint_(tint) {}
   int specular_lobes(const Vec3& wo, BsdfSample* out, const ShadingPoint& sp = {}) const override;
   uint32_t flags() const override { return kBsdfSpecular | kBsdfReflection | kBsdfTransmission; }
-  Color albedo(const ShadingPoint& = {}) const override { return Color(1.0f); }
+  Color albedo(const ShadingPoint& sp = {}) const override { return tint_.albedo(sp.uv); }
   // Reflectance for local direction wo (either side of the boundary).
   float reflectance(const Vec3& wo) const;
   // Refracted local direction for wo; false under total internal reflection.
@@ -29,35 +37,38 @@ class Dielectric final : public SpecularBsdf {
  private:
   float eta_;
   FresnelModel model_;
+  DielectricTint tint_;
 };
 
 class ThinDielectric final : public SpecularBsdf {
  public:
   static std::unique_ptr<Bsdf> create(const Params& p);
-  explicit ThinDielectric(float eta) : eta_(eta) {}
+  explicit ThinDielectric(float eta, const DielectricTint& tint = {}) : eta_(eta), tint_(tint) {}
   int specular_lobes(const Vec3& wo, BsdfSample* out, const ShadingPoint& sp = {}) const override;
   uint32_t flags() const override { return kBsdfSpecular | kBsdfReflection | kBsdfTransmission; }
-  Color albedo(const ShadingPoint& = {}) const override { return Color(1.0f); }
+  Color albedo(const ShadingPoint& sp = {}) const override { return tint_.albedo(sp.uv); }
   // Reflectance of the pane with all internal reflections: R + T^2 R / (1 - R^2) = 2R / (1 + R).
   float reflectance(float cos_i) const;
 
  private:
   float eta_;
+  DielectricTint tint_;
 };
 
 class RoughDielectric final : public Bsdf {
  public:
   static std::unique_ptr<Bsdf> create(const Params& p);
-  RoughDielectric(const MicrofacetDistribution& dist, float eta) : dist_(dist), eta_(eta) {}
+  RoughDielectric(const MicrofacetDistribution& dist, float eta, const DielectricTint& tint = {})
+      : dist_(dist), eta_(eta), tint_(tint) {}
   Color eval(const Vec3& wo, const Vec3& wi, const ShadingPoint& sp = {}) const override;
   float pdf(const Vec3& wo, const Vec3& wi, const ShadingPoint& sp = {}) const override;
   bool sample(const Vec3& wo, const Vec2& u, float u_lobe, BsdfSample& s, const ShadingPoint& sp = {}) const override;
   int specular_lobes(const Vec3& wo, BsdfSample* out, const ShadingPoint& sp = {}) const override {  // the smooth limit
-    return Dielectric(eta_, FresnelModel::Exact).specular_lobes(wo, out, sp);
+    return Dielectric(eta_, FresnelModel::Exact, tint_).specular_lobes(wo, out, sp);
   }
   uint32_t flags() const override { return kBsdfGlossy | kBsdfReflection | kBsdfTransmission; }
   float glossy_roughness() const override { return std::min(dist_.alpha_u(), dist_.alpha_v()); }
-  Color albedo(const ShadingPoint& = {}) const override { return Color(1.0f); }
+  Color albedo(const ShadingPoint& sp = {}) const override { return tint_.albedo(sp.uv); }
 
  private:
   // The half vector of (wo, wi), facing +z, and the relative index across it; false when the
@@ -65,6 +76,7 @@ class RoughDielectric final : public Bsdf {
   bool half_vector(const Vec3& wo, const Vec3& wi, Vec3& wm, float& etap) const;
   MicrofacetDistribution dist_;
   float eta_;
+  DielectricTint tint_;
 };
 
 }  // namespace caustica
