@@ -264,7 +264,7 @@ void check_photon_memory(size_t photons) {
   // then the kd-tree index and the precomputed-irradiance points (a quarter as many, each with
   // a record, an index entry and a grid entry, normal and cells: PointGrid).
   const double bytes_per_photon = 52.0 + sizeof(Photon) + 8.0 + 0.25 * (sizeof(Photon) + 8.0 + 60.0);
-  check_memory(double(photons) * bytes_per_photon, "the photon maps of " + std::to_string(photons) + " photons", " (use fewer photons)");
+  check_memory(double(photons) * bytes_per_photon, "a photon pass of " + std::to_string(photons) + " photons", " (use fewer photons)");
 }
 
 PhotonPassResult trace_photons(const Scene& scene, const PhotonPassSettings& settings) {
