@@ -1,6 +1,7 @@
 // The error for bad input of any kind (scene file, command line, image or mesh file): its
 // message is for the user and names the file and the place in it.
 #pragma once
+#include <cstdio>
 #include <stdexcept>
 #include <string>
 
@@ -37,5 +38,12 @@ class InputError : public std::runtime_error {
     return out;
   }
 };
+
+// A number as messages quote it: printf's %g ("2e+18", "0.5").
+inline std::string format_number(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", value);
+  return text;
+}
 
 }  // namespace caustica

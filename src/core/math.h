@@ -29,6 +29,12 @@ inline float max_component(const Vec3& v) { return std::max(v.x, std::max(v.y, v
 inline float luminance(const Color& c) { return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b; }
 inline float average(const Color& c) { return (c.r + c.g + c.b) / 3.0f; }
 inline bool is_black(const Color& c) { return c.r == 0.0f && c.g == 0.0f && c.b == 0.0f; }
+// v divided by its largest |component| (v itself when zero), so that its length can be taken:
+// a float's overflows for vectors longer than about 1.8e19.
+inline Vec3 scaled_to_unit_max(const Vec3& v) {
+  const float m = max_component(glm::abs(v));
+  return m > 0.0f ? v / m : v;
+}
 inline bool is_finite(const Vec3& v) {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }

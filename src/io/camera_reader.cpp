@@ -74,9 +74,7 @@ void Loader::read_camera(const json& j, const std::string& p) {
   r.check_object(j, p, {"position", "look_at", "up", "fov", "fov_axis", "mirror", "aperture_radius", "focus_distance"});
   const Vec3 pos = r.point(r.require(j, p, "position"), child(p, "position"));
   const Vec3 at = r.point(r.require(j, p, "look_at"), child(p, "look_at"));
-  Vec3 up = j.contains("up") ? r.vec3(j["up"], child(p, "up")) : Vec3(0, 1, 0);
-  // Scaled to its largest component: the length of a vector past about 1.8e19 overflows a float.
-  if (max_component(glm::abs(up)) > 0.0f) up /= max_component(glm::abs(up));
+  const Vec3 up = scaled_to_unit_max(j.contains("up") ? r.vec3(j["up"], child(p, "up")) : Vec3(0, 1, 0));
   const float fov = j.contains("fov") ? float(r.number_in(j["fov"], child(p, "fov"), 0.1, 179.0)) : 45.0f;
   if (glm::length(at - pos) <= 0.0f) r.fail(child(p, "look_at"), "look_at equals position");
   if (glm::length(glm::cross(glm::normalize(at - pos), up)) < 1e-6f) {

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <set>
 #include <sstream>
@@ -280,16 +279,8 @@ Vec3 JsonReader::vec3(const nlohmann::json& v, const std::string& pointer) const
 }
 
 std::string out_of_scene_range(const std::string& what) {
-  char limit[32];
-  std::snprintf(limit, sizeof limit, "%g", double(kMaxCoordinate));
-  return what + " is out of range: positions and sizes must lie within " + limit +
+  return what + " is out of range: positions and sizes must lie within " + format_number(kMaxCoordinate) +
          " of the origin (the renderer computes in single precision)";
-}
-
-std::string format_number(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%g", value);
-  return text;
 }
 
 Vec3 JsonReader::point(const nlohmann::json& v, const std::string& pointer) const {

@@ -63,7 +63,6 @@ struct JsonSource {
 
 // The message for a position or size past kMaxCoordinate: `what` names it ("coordinate 2e+18").
 std::string out_of_scene_range(const std::string& what);
-std::string format_number(double value);  // %g
 
 inline std::string child(const std::string& pointer, const std::string& key) { return pointer + "/" + key; }
 inline std::string child(const std::string& pointer, size_t index) {

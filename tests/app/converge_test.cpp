@@ -11,6 +11,17 @@
 using namespace caustica;
 namespace fs = std::filesystem;
 
+namespace {
+const std::string kTiny = std::string(CAUSTICA_SOURCE_DIR) + "/tests/data/tiny.json";
+
+// tiny.json rendered with `spp` samples per pixel into DIR/ref.exr, the reference to converge to.
+void render_reference(const test::TempDir& dir, int spp) {
+  const test::RunResult r = test::run_caustica("render '" + kTiny + "' --spp " + std::to_string(spp) + " -o ref.exr -q", dir);
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+}
+}  // namespace
+
 TEST_CASE("converge: default checkpoints are powers of two up to the budget", "[app][converge]") {
   CHECK(default_checkpoints(10) == std::vector<double>{1, 2, 4, 8, 10});
   CHECK(default_checkpoints(8) == std::vector<double>{1, 2, 4, 8});
@@ -25,10 +36,8 @@ TEST_CASE("converge: the CSV has a header and one line per row", "[app][converge
 
 TEST_CASE("converge: a short run writes the CSV, images, error maps and the report", "[app][converge]") {
   test::TempDir dir;
-  const std::string tiny = std::string(CAUSTICA_SOURCE_DIR) + "/tests/data/tiny.json";
-  auto r = test::run_caustica("render '" + tiny + "' --spp 64 -o ref.exr -q", dir);
-  REQUIRE(r.exit_code == 0);
-  r = test::run_caustica("converge '" + tiny + "' --reference ref.exr --integrators path,photon --time 1.5 "
+  render_reference(dir, 64);
+  test::RunResult r = test::run_caustica("converge '" + kTiny + "' --reference ref.exr --integrators path,photon --time 1.5 "
                          "--checkpoints 0.5,1 --photons 5000 --out report -q",
                          dir);
   INFO(r.err);
@@ -76,9 +85,8 @@ TEST_CASE("converge: the CSV has a floor-free column when the reference is sever
 
 TEST_CASE("converge: two references give the floor and the error without it", "[app][converge]") {
   test::TempDir dir;
-  const std::string tiny = std::string(CAUSTICA_SOURCE_DIR) + "/tests/data/tiny.json";
   for (const char* seed : {"1", "2"}) {
-    auto r = test::run_caustica("render '" + tiny + "' --spp 16 --seed " + seed + " -o ref" + seed + ".exr -q", dir);
+    auto r = test::run_caustica("render '" + kTiny + "' --spp 16 --seed " + seed + " -o ref" + seed + ".exr -q", dir);
     REQUIRE(r.exit_code == 0);
   }
   // The floor, as compare computes it from the same two references.
@@ -87,7 +95,7 @@ TEST_CASE("converge: two references give the floor and the error without it", "[
   const double floor = nlohmann::json::parse(r.out)["reference_floor"].get<double>();
   REQUIRE(floor > 0);
   // The references before the scene: each --reference takes one file, not the scene after it.
-  r = test::run_caustica("converge --reference ref1.exr --reference ref2.exr '" + tiny + "' --integrators path "
+  r = test::run_caustica("converge --reference ref1.exr --reference ref2.exr '" + kTiny + "' --integrators path "
                          "--time 1 --checkpoints 0.5 --out report",
                          dir);
   INFO(r.err);
@@ -115,12 +123,11 @@ TEST_CASE("converge: two references give the floor and the error without it", "[
 
 TEST_CASE("converge: bad input is a clear error", "[app][converge]") {
   test::TempDir dir;
-  const std::string tiny = std::string(CAUSTICA_SOURCE_DIR) + "/tests/data/tiny.json";
   write_image(dir.file("small.exr"), Image(8, 8));
-  auto r = test::run_caustica("converge '" + tiny + "' --reference small.exr --integrators path --time 1 --width 16 --out o", dir);
+  auto r = test::run_caustica("converge '" + kTiny + "' --reference small.exr --integrators path --time 1 --width 16 --out o", dir);
   CHECK(r.exit_code == 1);
   CHECK(r.err.find("small.exr: reference is 8x8") != std::string::npos);
-  r = test::run_caustica("converge '" + tiny + "' --reference small.exr --integrators path,pathx --time 1 --out o", dir);
+  r = test::run_caustica("converge '" + kTiny + "' --reference small.exr --integrators path,pathx --time 1 --out o", dir);
   CHECK(r.exit_code == 1);
   CHECK(r.err.find("unknown integrator \"pathx\"") != std::string::npos);
 }
@@ -130,12 +137,10 @@ TEST_CASE("converge: Ctrl-C or SIGTERM ends the run with the figures so far writ
   for (const auto& [signal, code] : {std::pair<std::string, int>{"INT", 130}, std::pair<std::string, int>{"TERM", 143}}) {
     INFO("SIG" << signal);
     test::TempDir dir;
-    const std::string tiny = std::string(CAUSTICA_SOURCE_DIR) + "/tests/data/tiny.json";
-    auto r = test::run_caustica("render '" + tiny + "' --spp 16 -o ref.exr -q", dir);
-    REQUIRE(r.exit_code == 0);
+    render_reference(dir, 16);
     // 60 s for path, then photon: the signal comes 3 s into path's run.
     const auto t0 = std::chrono::steady_clock::now();
-    r = test::run_caustica("converge '" + tiny + "' --reference ref.exr --integrators path,photon --time 60 "
+    const test::RunResult r = test::run_caustica("converge '" + kTiny + "' --reference ref.exr --integrators path,photon --time 60 "
                            "--checkpoints 0.5,1 --out report -q",
                            dir, "timeout --preserve-status -s " + signal + " 3 ");
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -161,16 +166,14 @@ TEST_CASE("converge: variants of an integrator pass the name check", "[app][conv
   // --integrators checks the name before any ':' (the settings after it are checked when the
   // integrator is made): photon:photons=2000 is photon with 2000 photons.
   test::TempDir dir;
-  const std::string tiny = std::string(CAUSTICA_SOURCE_DIR) + "/tests/data/tiny.json";
-  auto r = test::run_caustica("render '" + tiny + "' --spp 4 -o ref.exr -q", dir);
-  REQUIRE(r.exit_code == 0);
-  r = test::run_caustica("converge '" + tiny + "' --reference ref.exr --integrators photon:photons=2000,path --time 0.3 "
+  render_reference(dir, 4);
+  test::RunResult r = test::run_caustica("converge '" + kTiny + "' --reference ref.exr --integrators photon:photons=2000,path --time 0.3 "
                          "--out report -q",
                          dir);
   INFO(r.err);
   CHECK(r.exit_code == 0);
   CHECK(fs::exists(dir.file("report/photon_photons_2000.exr")));
-  r = test::run_caustica("converge '" + tiny + "' --reference ref.exr --integrators phton:photons=2000 --time 0.3 --out report",
+  r = test::run_caustica("converge '" + kTiny + "' --reference ref.exr --integrators phton:photons=2000 --time 0.3 --out report",
                          dir);
   CHECK(r.exit_code == 1);
   CHECK(r.err.find("--integrators: unknown integrator \"phton\"") != std::string::npos);

@@ -1,6 +1,6 @@
 // Environment lights.
-#include <cstdio>
 #include "core/lights/environment.h"
+#include "core/error.h"
 #include "core/lights/read.h"
 
 namespace caustica {
@@ -118,10 +118,8 @@ std::unique_ptr<Light> EnvironmentLight::create(const Params& p) {
   }
   const float scale = float(p.number_in("scale", 1.0, 0.0, kMaxColor));
   if (double(brightest) * scale > kMaxColor) {
-    char value[32];
-    std::snprintf(value, sizeof value, "%g", double(brightest) * scale);
     p.fail("filename", "environment map " + path + " is too bright: its brightest pixel" +
-                           (scale == 1.0f ? std::string() : " times its scale") + " is " + value +
+                           (scale == 1.0f ? std::string() : " times its scale") + " is " + format_number(double(brightest) * scale) +
                            ", the most a scene may emit is 1e9");
   }
   auto env = std::make_unique<EnvironmentLight>(std::move(image), scale, p.rotation("to_world"));

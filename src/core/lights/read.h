@@ -13,11 +13,9 @@ inline Color read_nonzero(const Params& p, const std::string& key) {
 
 // A required direction, normalised; zero is an error.
 inline Vec3 read_direction(const Params& p, const std::string& key) {
-  const Vec3 d = p.vec3(key);
-  // Scaled first: the length of a vector past about 1.8e19 overflows a float.
-  const float largest = max_component(glm::abs(d));
-  if (!(largest > 0.0f)) p.fail(key, "direction must not be zero");
-  return glm::normalize(d / largest);
+  const Vec3 d = scaled_to_unit_max(p.vec3(key));
+  if (!(max_component(glm::abs(d)) > 0.0f)) p.fail(key, "direction must not be zero");
+  return glm::normalize(d);
 }
 
 }  // namespace caustica
