@@ -226,6 +226,9 @@ std::vector<Photon> run_map(const Scene& scene, const PhotonPassSettings& s, boo
     const double need = rate > 0 ? double(wanted - std::min(wanted, stored)) / rate : double(cap);
     chunks_in_round = std::clamp<uint64_t>(uint64_t(need * 1.05 / kChunk) + 1, 1, 256);
   }
+  // A stopped pass keeps nothing: no caller uses part of a map, and normalising and indexing
+  // millions of photons would delay the stop by seconds.
+  if (s.cancel && s.cancel->load()) return result;
   if (stored < wanted && emitted >= cap) {
     warnings.push_back(std::string(caustic ? "caustic" : "global") + " photon map: only " + std::to_string(stored) +
                        " of " + std::to_string(wanted) + " photons stored after " + std::to_string(emitted) +
@@ -271,7 +274,8 @@ PhotonPassResult trace_photons(const Scene& scene, const PhotonPassSettings& set
   const auto t0 = std::chrono::steady_clock::now();
   PhotonPassResult r;
   r.global = run_map(scene, settings, false, r.global_emitted, r.global_scale, r.warnings);
-  r.caustic = run_map(scene, settings, true, r.caustic_emitted, r.caustic_scale, r.warnings);
+  if (!(settings.cancel && settings.cancel->load()))
+    r.caustic = run_map(scene, settings, true, r.caustic_emitted, r.caustic_scale, r.warnings);
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return r;
 }

@@ -14,7 +14,7 @@ struct PhotonPassSettings {
   int max_depth = 16;               // bounces per photon path
   float glossy_threshold = 0.3f;    // photons are stored on glossy lobes at least this rough
   uint64_t seed = 0;
-  const std::atomic<bool>* cancel = nullptr;
+  const std::atomic<bool>* cancel = nullptr;  // once set, the pass stops within a chunk and keeps no photons
 };
 
 struct PhotonPassResult {

@@ -124,6 +124,7 @@ bool PhotonIntegrator::build_maps(const Scene& scene, uint64_t seed, const Prepr
   stats_.caustic_emitted += r.caustic_emitted;
   ++stats_.passes;
   report_new_warnings(r.warnings, warnings_, context.quiet);
+  if (context.cancel && context.cancel->load()) return false;  // the maps of a stopped pass are empty
   auto t0 = std::chrono::steady_clock::now();
   // The two kd-tree builds are serial inside nanoflann: side by side they take one's time.
   tbb::parallel_invoke([&] { global_.build(std::move(r.global), r.global_scale); },

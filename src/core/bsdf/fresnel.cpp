@@ -32,6 +32,10 @@ Color fresnel_conductor(float cos_i, const Color& eta, const Color& k) {
   Color r;
   for (int ch = 0; ch < 3; ++ch) {
     const C n(eta[ch], k[ch]);
+    if (n == C(0.0)) {  // the limit of a vanishing index (a named table's clamped channel): a mirror
+      r[ch] = 1.0f;
+      continue;
+    }
     const C cos_t = std::sqrt(1.0 - sin2 / (n * n));  // Snell's law with a complex index
     const C rs = (c - n * cos_t) / (c + n * cos_t);
     const C rp = (n * c - cos_t) / (n * c + cos_t);

@@ -1,5 +1,5 @@
 // Named indices of refraction, as Mitsuba 3 names them: dielectrics ("bk7", "water", ...) and
-// conductors ("Au", "Cu", ...) with RGB values.
+// conductors ("Au", "Cu", ... every table Mitsuba has) with RGB values.
 #pragma once
 #include <string>
 #include "core/bsdf/conductor.h"
