@@ -4,19 +4,6 @@
 #include "core/rng.h"
 
 namespace caustica {
-namespace {
-// Barycentric coordinates of a point on a triangle (b0 for p0, b1 for p1, b2 for p2).
-Vec3 barycentrics(const Primitive& t, const Vec3& p) {
-  const Vec3 e1 = t.p1 - t.p0, e2 = t.p2 - t.p0, d = p - t.p0;
-  const float d11 = glm::dot(e1, e1), d12 = glm::dot(e1, e2), d22 = glm::dot(e2, e2);
-  const float d1 = glm::dot(d, e1), d2 = glm::dot(d, e2);
-  const float denom = d11 * d22 - d12 * d12;
-  if (!(denom > 0.0f)) return Vec3(1.0f, 0.0f, 0.0f);
-  const float b1 = (d22 * d1 - d12 * d2) / denom, b2 = (d11 * d2 - d12 * d1) / denom;
-  return Vec3(1.0f - b1 - b2, b1, b2);
-}
-}  // namespace
-
 void Scene::build(std::vector<Primitive> prims) {
   has_masks_ = false;
   for (const auto& m : materials) has_masks_ = has_masks_ || m->has_mask();
@@ -99,11 +86,8 @@ bool Scene::intersect_opaque(const Ray& ray, SurfaceHit& hit) const {
   Vec3 dpdu(0.0f);  // orients anisotropic BSDFs, as Mitsuba's shading frames do
   hit.sp.uv = Vec2(0.0f);
   if (prim.kind == ShapeKind::Sphere) {
-    // Mitsuba's sphere parameterisation: u = phi / 2 pi around z, v = theta / pi from +z.
     const Vec3 d = (hit.p - prim.p0) / prim.radius();
-    float u = std::atan2(d.y, d.x) * (0.5f * kInvPi);
-    if (u < 0.0f) u += 1.0f;
-    hit.sp.uv = Vec2(u, std::acos(std::clamp(d.z, -1.0f, 1.0f)) * kInvPi);
+    hit.sp.uv = sphere_uv(d);
     dpdu = Vec3(-d.y, d.x, 0.0f);
   } else if (prim.attributes != kNoAttributes) {
     const TriangleAttributes& a = attributes[prim.attributes];

@@ -72,7 +72,7 @@ class Scene {
   // Radiance that the surface at `hit` emits towards local direction wo (its area light's, front
   // side only).
   Color emitted(const SurfaceHit& hit, const Vec3& wo_local) const {
-    return hit.light >= 0 && wo_local.z > 0 ? lights[size_t(hit.light)]->surface_radiance() : Color(0.0f);
+    return hit.light >= 0 && wo_local.z > 0 ? lights[size_t(hit.light)]->surface_radiance(hit.sp.uv) : Color(0.0f);
   }
   // Radiance arriving along a ray that leaves the scene in direction dir (environment lights).
   Color escaped(const Vec3& dir) const;

@@ -1,5 +1,7 @@
 // Triangle and sphere geometry and intersection.
 #include "core/shape.h"
+#include <algorithm>
+#include <cmath>
 #include "core/sampling.h"
 
 namespace caustica {
@@ -60,6 +62,29 @@ Vec3 Primitive::sample_point(const Vec2& u, Vec3* normal) const {
   }
   if (normal) *normal = normal_at(p);
   return p;
+}
+
+Vec3 barycentrics(const Primitive& t, const Vec3& p) {
+  const Vec3 e1 = t.p1 - t.p0, e2 = t.p2 - t.p0, d = p - t.p0;
+  const float d11 = glm::dot(e1, e1), d12 = glm::dot(e1, e2), d22 = glm::dot(e2, e2);
+  const float d1 = glm::dot(d, e1), d2 = glm::dot(d, e2);
+  const float denom = d11 * d22 - d12 * d12;
+  if (!(denom > 0.0f)) return Vec3(1.0f, 0.0f, 0.0f);
+  const float b1 = (d22 * d1 - d12 * d2) / denom, b2 = (d11 * d2 - d12 * d1) / denom;
+  return Vec3(1.0f - b1 - b2, b1, b2);
+}
+
+Vec2 sphere_uv(const Vec3& d) {
+  float u = std::atan2(d.y, d.x) * (0.5f * kInvPi);
+  if (u < 0.0f) u += 1.0f;
+  return Vec2(u, std::acos(std::clamp(d.z, -1.0f, 1.0f)) * kInvPi);
+}
+
+Vec2 surface_uv(const Primitive& prim, const TriangleAttributes* a, const Vec3& p) {
+  if (prim.kind == ShapeKind::Sphere) return sphere_uv(glm::normalize(p - prim.p0));
+  if (!a || !a->has_uvs) return Vec2(0.0f);
+  const Vec3 b = barycentrics(prim, p);
+  return b.x * a->uv[0] + b.y * a->uv[1] + b.z * a->uv[2];
 }
 
 bool intersect_triangle(const Ray& ray, const Vec3& p0, const Vec3& p1, const Vec3& p2,

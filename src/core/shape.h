@@ -54,6 +54,15 @@ struct alignas(64) Primitive {
 };
 static_assert(sizeof(Primitive) == 64, "a primitive fills one cache line");
 
+// Barycentric coordinates of a point on a triangle (b0 for p0, b1 for p1, b2 for p2).
+Vec3 barycentrics(const Primitive& t, const Vec3& p);
+// Mitsuba's sphere parameterisation at unit direction d from the centre: u = phi / 2 pi around
+// z, v = theta / pi from +z.
+Vec2 sphere_uv(const Vec3& d);
+// Texture coordinates at a point p on a primitive: a sphere's from its direction, a triangle's
+// interpolated from its corners' (zero without attributes or UVs).
+Vec2 surface_uv(const Primitive& prim, const TriangleAttributes* attributes, const Vec3& p);
+
 // Moller-Trumbore (1997). Returns true and t, barycentrics (u, v) for a hit with 0 < t < tmax.
 bool intersect_triangle(const Ray& ray, const Vec3& p0, const Vec3& p1, const Vec3& p2,
                         float tmax, float& t, float& u, float& v);

@@ -106,7 +106,7 @@ struct Loader {
   float sampling_weight(const json& j, const std::string& p) const;
 
   size_t degenerate_ = 0;
-  std::vector<Color> emission_{};  // by material id: the radiance of the area lights it makes
+  std::vector<ColorParam> emission_{};  // by material id: the radiance of the area lights it makes
 };
 
 }  // namespace caustica::scene_loading

@@ -8,6 +8,7 @@
 #include "core/lights/registry.h"
 #include "core/textures/registry.h"
 #include "io/bsdf_reader.h"
+#include "io/json_params.h"
 #include "io/loader.h"
 
 namespace caustica::scene_loading {
@@ -74,7 +75,8 @@ uint32_t Loader::add_material(const std::string& name, const json& m, const std:
   material_ids[name] = id;
   scene().materials.push_back(std::move(mat));
   scene().material_names.push_back(name);
-  emission_.push_back(m.contains("emission") ? r.color(m["emission"], child(p, "emission")) : Color(0.0f));
+  // A colour, or a texture over the object's UVs (kept alive by the scene).
+  emission_.push_back(JsonParams(ctx, m, p).texture("emission", Color(0.0f)));
   return id;
 }
 

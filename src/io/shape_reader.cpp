@@ -61,11 +61,11 @@ bool Loader::read_quad(const json& j, const std::string& p, std::vector<Primitiv
 
 void Loader::add_object(std::vector<Primitive> shapes, uint32_t mat, const json& j, const std::string& p) {
   const bool flip = j.contains("flip_normal") && r.boolean(j["flip_normal"], child(p, "flip_normal"));
-  if (j.contains("sampling_weight") && is_black(emission_[mat])) {
+  if (j.contains("sampling_weight") && emission_[mat].is_black()) {
     r.fail(child(p, "sampling_weight"), "sampling_weight belongs to an object whose material emits");
   }
   if (shapes.empty()) {
-    if (!is_black(emission_[mat])) r.fail(p, "emissive object has zero area (all its triangles are degenerate)");
+    if (!emission_[mat].is_black()) r.fail(p, "emissive object has zero area (all its triangles are degenerate)");
     r.warn(p, "object has no usable triangles and is left out", out.warnings);
     return;
   }
@@ -78,9 +78,9 @@ void Loader::add_object(std::vector<Primitive> shapes, uint32_t mat, const json&
     s.material = mat;
     s.flip = flip;
   }
-  if (!is_black(emission_[mat])) {
+  if (!emission_[mat].is_black()) {
     light = static_cast<int32_t>(scene().lights.size());
-    auto area_light = std::make_unique<AreaLight>(shapes, emission_[mat]);
+    auto area_light = std::make_unique<AreaLight>(shapes, emission_[mat], scene().attributes);
     if (!(area_light->area() > 0.0f)) r.fail(p, "emissive object has zero area");
     if (j.contains("sampling_weight")) area_light->set_sampling_weight(sampling_weight(j, p));
     scene().lights.push_back(std::move(area_light));

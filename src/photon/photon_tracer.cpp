@@ -52,6 +52,7 @@ class Emitter {
     const Vec2 u_dir(rng.next_float(), rng.next_float());
     if (!caustic_) {
       const EmittedPhoton e = light->sample_emission(u_pos, u_dir);
+      if (is_black(e.flux)) return false;  // a black texel of a textured light
       flux = e.flux / pmf;
       ray = emission_ray(e.origin, e.normal, e.dir);
       return true;
@@ -78,17 +79,15 @@ class Emitter {
     }
     // Aim at one specular object's bounding sphere, chosen uniformly; the direction density
     // is the mixture over all objects whose cone contains the direction.
-    Vec3 normal;
-    float pdf_pos;
-    const Vec3 origin = light->sample_origin(u_pos, normal, pdf_pos);
-    const Vec3 dir = sample_towards(origin, targets_[j], u_dir);
+    const LightPoint origin = light->sample_origin(u_pos);
+    const Vec3 dir = sample_towards(origin.p, targets_[j], u_dir);
     float pdf_dir = 0;
-    for (const Aim& a : targets_) pdf_dir += cone_pdf(origin, a, dir);
+    for (const Aim& a : targets_) pdf_dir += cone_pdf(origin.p, a, dir);
     pdf_dir /= float(targets_.size());
-    const Color intensity = light->emitted_towards(normal, dir);
+    const Color intensity = light->emitted_towards(origin, dir);
     if (pdf_dir <= 0 || is_black(intensity)) return false;
-    flux = intensity / (pdf_pos * pdf_dir * pmf);
-    ray = emission_ray(origin, normal, dir);
+    flux = intensity / (origin.pdf * pdf_dir * pmf);
+    ray = emission_ray(origin.p, origin.n, dir);
     return true;
   }
 

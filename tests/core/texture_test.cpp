@@ -2,6 +2,8 @@
 // OpenImageIO's TextureSystem (orientation, wrap modes, sRGB), sphere UVs, OBJ vt/vn,
 // face_normals, and the errors for missing or unreadable texture files.
 #include <catch2/catch.hpp>
+#include <OpenImageIO/imageio.h>
+#include <vector>
 #include "io/image_io.h"
 #include "io/scene_loader.h"
 #include "core/textures/bitmap.h"
@@ -64,6 +66,43 @@ TEST_CASE("bitmap: 8-bit images are decoded from sRGB unless raw", "[core][textu
   CHECK(decoded.eval(Vec2(0.5f)).x == Approx(0.5f).margin(0.01f));
   const BitmapTexture raw(path, TextureFilter::Nearest, TextureWrap::Repeat, UvTransform{}, true);
   CHECK(raw.eval(Vec2(0.5f)).x == Approx(188.0f / 255.0f).margin(0.01f));
+}
+
+namespace {
+// An 8-bit PNG of 2 x 1 pixels with `channels` channels, the last of them alpha.
+std::string write_png_with_alpha(const test::TempDir& dir, const std::string& name, int channels,
+                                 const std::vector<unsigned char>& texels) {
+  const std::string path = dir.file(name);
+  auto out = OIIO::ImageOutput::create(path);
+  REQUIRE(out);
+  OIIO::ImageSpec spec(2, 1, channels, OIIO::TypeDesc::UINT8);
+  spec.alpha_channel = channels - 1;
+  spec.attribute("oiio:UnassociatedAlpha", 1);  // the colour is stored as given
+  REQUIRE(out->open(path, spec));
+  REQUIRE(out->write_image(OIIO::TypeDesc::UINT8, texels.data()));
+  REQUIRE(out->close());
+  return path;
+}
+}  // namespace
+
+TEST_CASE("bitmap: alpha is dropped, grey-alpha reads as grey and RGBA as RGB, colour not multiplied by alpha",
+          "[core][texture]") {
+  // Mitsuba's leaf mask (docs/scenes/bsdf_mask_after.xml) is grey-alpha: grey was read as red and
+  // alpha as green, so the mask's opacity came out about half everywhere.
+  test::TempDir dir;
+  // Grey 255 and 0, alpha 255 and 64.
+  const std::string ya = write_png_with_alpha(dir, "ya.png", 2, {255, 255, 0, 64});
+  const BitmapTexture grey(ya, TextureFilter::Nearest, TextureWrap::Clamp, UvTransform{}, true);
+  CHECK(grey.eval(Vec2(0.25f, 0.5f)) == Color(1.0f));
+  CHECK(grey.eval(Vec2(0.75f, 0.5f)) == Color(0.0f));
+  // RGBA: (255, 128, 0) at alpha 64 stays (255, 128, 0), raw.
+  const std::string rgba = write_png_with_alpha(dir, "rgba.png", 4, {255, 128, 0, 64, 0, 0, 255, 255});
+  const BitmapTexture colour(rgba, TextureFilter::Nearest, TextureWrap::Clamp, UvTransform{}, true);
+  const Color c = colour.eval(Vec2(0.25f, 0.5f));
+  CHECK(c.x == Approx(1.0f).margin(1e-3));
+  CHECK(c.y == Approx(128.0f / 255.0f).margin(1e-3));
+  CHECK(c.z == Approx(0.0f).margin(1e-3));
+  CHECK(colour.eval(Vec2(0.75f, 0.5f)) == Color(0.0f, 0.0f, 1.0f));
 }
 
 namespace {

@@ -996,3 +996,25 @@ TEST_CASE("mitsuba: dielectrics take specular_reflectance and specular_transmitt
   <shape type="sphere"><ref id="d"/></shape>)");
   CHECK_THAT(error_of([&] { parse_scene(bad, "scene.xml", "."); }), Contains("specular_transmittance"));
 }
+
+TEST_CASE("mitsuba: an area emitter's radiance as a texture", "[mitsuba]") {
+  // Issue 24: a textured area emitter was an error.
+  const std::string xml = loadable(R"(  <shape type="rectangle">
+    <emitter type="area"><texture type="checkerboard" name="radiance">
+      <rgb name="color0" value="0.2, 0.4, 0.6"/><rgb name="color1" value="0, 0, 0"/></texture></emitter>
+  </shape>)");
+  const json d = translate(xml);
+  const json& m = d["materials"][d["objects"][0]["material"].get<std::string>()];
+  REQUIRE(m["emission"].is_object());
+  CHECK(m["emission"]["type"] == "checkerboard");
+  const LoadedScene loaded = parse_scene(xml, "scene.xml", ".");
+  REQUIRE(loaded.scene->lights.size() == 1);
+  // Half the rectangle emits color0: the power is pi A color0 / 2 (A = 4).
+  CHECK(loaded.scene->lights[0]->power().z == Approx(kPi * 4.0 * 0.6 / 2.0).epsilon(0.01));
+  // A value and a texture, or two textures: an error naming the place.
+  CHECK_THAT(error_of([] {
+               translate(xml_scene(R"(  <shape type="rectangle"><emitter type="area"><rgb name="radiance" value="1"/>
+    <texture type="checkerboard" name="radiance"/></emitter></shape>)"));
+             }),
+             Contains("an area emitter takes one radiance"));
+}

@@ -1,36 +1,43 @@
 // Area lights: any emissive shape (triangles from a quad or mesh, or a sphere), sampled
-// uniformly by area, emitting Le on the front side only. The scene reader makes one per object
-// whose material has an emission.
+// uniformly by area, emitting Le on the front side only; Le is a colour or a texture over the
+// shape's UVs (Mitsuba's area emitter with a bitmap `radiance`). The scene reader makes one per
+// object whose material has an emission.
 #pragma once
 #include <vector>
 #include "core/lights/light.h"
+#include "core/textures/texture.h"
 
 namespace caustica {
 
 class AreaLight final : public Light {
  public:
-  AreaLight(std::vector<Primitive> shapes, const Color& radiance);
+  // `attributes`: the scene's per-triangle UVs, which a textured Le is looked up with (the
+  // shapes' Primitive::attributes index them).
+  AreaLight(std::vector<Primitive> shapes, const ColorParam& radiance,
+            const std::vector<TriangleAttributes>& attributes = {});
   bool sample_li(const Vec3& x, const Vec2& u, LightSample& s) const override;
   EmittedPhoton sample_emission(const Vec2& u_pos, const Vec2& u_dir) const override;
-  Vec3 sample_origin(const Vec2& u, Vec3& normal, float& pdf) const override {
-    pdf = 1.0f / area_;
-    return sample_point(u, normal);
+  LightPoint sample_origin(const Vec2& u) const override;
+  Color emitted_towards(const LightPoint& at, const Vec3& dir) const override {
+    return radiance_.at(at.uv) * std::max(0.0f, glm::dot(at.n, dir));
   }
-  Color emitted_towards(const Vec3& normal, const Vec3& dir) const override {
-    return radiance_ * std::max(0.0f, glm::dot(normal, dir));
-  }
-  Color power() const override { return kPi * area_ * radiance_; }
+  // pi A times Le averaged over the surface (by area, for a texture).
+  Color power() const override { return kPi * area_ * mean_radiance_; }
   bool is_delta() const override { return false; }
   Bounds bounds() const override;
   float pdf_li(const Vec3& x, const Vec3& y, const Vec3& ny) const override;
   float area() const { return area_; }
-  Color surface_radiance() const override { return radiance_; }
+  Color surface_radiance(const Vec2& uv = Vec2(0.0f)) const override { return radiance_.at(uv); }
+  bool textured() const { return radiance_.texture != nullptr; }
 
  private:
-  Vec3 sample_point(Vec2 u, Vec3& n) const;
+  // A point uniformly by area, with its normal and texture coordinates.
+  Vec3 sample_point(Vec2 u, Vec3& n, Vec2& uv) const;
   std::vector<Primitive> shapes_;
+  std::vector<TriangleAttributes> uvs_;  // by shape, for a textured Le (else empty)
   Distribution1D by_area_;
-  Color radiance_;
+  ColorParam radiance_;
+  Color mean_radiance_{0.0f};
   float area_ = 0;
 };
 

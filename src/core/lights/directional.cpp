@@ -15,17 +15,14 @@ bool DirectionalLight::sample_li(const Vec3& x, const Vec2&, LightSample& s) con
   return true;
 }
 
-Vec3 DirectionalLight::sample_origin(const Vec2& u, Vec3& normal, float& pdf) const {
-  normal = Vec3(0.0f);
-  pdf = 1.0f / (kPi * radius_ * radius_);
-  return point_on_disc(centre_ - dir_ * (1.001f * radius_), dir_, radius_, u);
+LightPoint DirectionalLight::sample_origin(const Vec2& u) const {
+  return {point_on_disc(centre_ - dir_ * (1.001f * radius_), dir_, radius_, u), Vec3(0.0f),
+          1.0f / (kPi * radius_ * radius_), Vec2(0.0f)};
 }
 
 EmittedPhoton DirectionalLight::sample_emission(const Vec2& u_pos, const Vec2&) const {
-  Vec3 normal;
-  float pdf;
-  const Vec3 origin = sample_origin(u_pos, normal, pdf);
-  return {origin, normal, dir_, irradiance_ / pdf};
+  const LightPoint origin = sample_origin(u_pos);
+  return {origin.p, origin.n, dir_, irradiance_ / origin.pdf};
 }
 
 std::unique_ptr<Light> DirectionalLight::create(const Params& p) {

@@ -15,8 +15,8 @@ class DirectionalLight final : public InfiniteLight {
   static std::unique_ptr<Light> create(const Params& p);
   bool sample_li(const Vec3& x, const Vec2& u, LightSample& s) const override;
   EmittedPhoton sample_emission(const Vec2& u_pos, const Vec2& u_dir) const override;
-  Vec3 sample_origin(const Vec2& u, Vec3& normal, float& pdf) const override;
-  Color emitted_towards(const Vec3&, const Vec3&) const override { return Color(0.0f); }
+  LightPoint sample_origin(const Vec2& u) const override;
+  Color emitted_towards(const LightPoint&, const Vec3&) const override { return Color(0.0f); }
   Color power() const override { return irradiance_ * (kPi * radius_ * radius_); }
   bool is_delta() const override { return true; }
   bool sample_travel(const Vec2&, Vec3& dir, Color& value) const override {

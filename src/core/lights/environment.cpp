@@ -89,12 +89,10 @@ bool EnvironmentLight::sample_travel(const Vec2& u, Vec3& dir, Color& value) con
   return true;
 }
 
-Vec3 EnvironmentLight::sample_origin(const Vec2&, Vec3& normal, float& pdf) const {
+LightPoint EnvironmentLight::sample_origin(const Vec2&) const {
   // An environment has no origin of its own: its photons start on a disc chosen together
   // with their direction (sample_emission, and sample_travel for aimed caustic photons).
-  normal = Vec3(0.0f);
-  pdf = 0.0f;
-  return centre_;
+  return {centre_, Vec3(0.0f), 0.0f, Vec2(0.0f)};
 }
 
 EmittedPhoton EnvironmentLight::sample_emission(const Vec2& u_pos, const Vec2& u_dir) const {

@@ -23,8 +23,8 @@ class EnvironmentLight final : public InfiniteLight {
 
   bool sample_li(const Vec3& x, const Vec2& u, LightSample& s) const override;
   EmittedPhoton sample_emission(const Vec2& u_pos, const Vec2& u_dir) const override;
-  Vec3 sample_origin(const Vec2& u, Vec3& normal, float& pdf) const override;
-  Color emitted_towards(const Vec3&, const Vec3&) const override { return Color(0.0f); }
+  LightPoint sample_origin(const Vec2& u) const override;
+  Color emitted_towards(const LightPoint&, const Vec3&) const override { return Color(0.0f); }
   Color power() const override { return power_per_area_ * (kPi * radius_ * radius_); }
   bool is_delta() const override { return false; }
   Color escaped(const Vec3& dir) const override;

@@ -19,6 +19,15 @@ struct LightSample {
   float pdf = 0;  // solid-angle density of wi (0 for a delta light), not counting the light's pmf
 };
 
+// A point from which a light's photons leave: its normal (zero for a point light), the area
+// density with which it was chosen (1 for a point light), and its texture coordinates.
+struct LightPoint {
+  Vec3 p{0.0f};
+  Vec3 n{0.0f};
+  float pdf = 0;
+  Vec2 uv{0.0f};
+};
+
 // A photon leaving a light.
 struct EmittedPhoton {
   Vec3 origin;
@@ -33,12 +42,13 @@ class Light {
   virtual bool sample_li(const Vec3& x, const Vec2& u, LightSample& s) const = 0;
   virtual EmittedPhoton sample_emission(const Vec2& u_pos, const Vec2& u_dir) const = 0;
   // A point on the light (normal zero and pdf 1 for a point light; else area density).
-  virtual Vec3 sample_origin(const Vec2& u, Vec3& normal, float& pdf) const = 0;
-  // Radiant intensity per unit area (Le cos) or per light (I) leaving along dir.
-  virtual Color emitted_towards(const Vec3& normal, const Vec3& dir) const = 0;
+  virtual LightPoint sample_origin(const Vec2& u) const = 0;
+  // Radiant intensity per unit area (Le cos) or per light (I) leaving `at` along dir.
+  virtual Color emitted_towards(const LightPoint& at, const Vec3& dir) const = 0;
   virtual Color power() const = 0;
-  // The radiance that an emitting surface sends out of its front side (area lights; zero else).
-  virtual Color surface_radiance() const { return Color(0.0f); }
+  // The radiance that an emitting surface sends out of its front side at texture coordinates uv
+  // (area lights; zero else).
+  virtual Color surface_radiance(const Vec2& /*uv*/ = Vec2(0.0f)) const { return Color(0.0f); }
   virtual bool is_delta() const = 0;
   virtual Bounds bounds() const = 0;
   // Solid-angle density with which sample_li from x picks the point y (normal ny) on the light;

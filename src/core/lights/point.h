@@ -18,12 +18,8 @@ class PointLight final : public Light {
   static std::unique_ptr<Light> create(const Params& p);
   bool sample_li(const Vec3& x, const Vec2& u, LightSample& s) const override;
   EmittedPhoton sample_emission(const Vec2& u_pos, const Vec2& u_dir) const override;
-  Vec3 sample_origin(const Vec2&, Vec3& normal, float& pdf) const override {
-    normal = Vec3(0.0f);
-    pdf = 1.0f;
-    return position_;
-  }
-  Color emitted_towards(const Vec3&, const Vec3& dir) const override { return intensity_ * falloff(dir); }
+  LightPoint sample_origin(const Vec2&) const override { return {position_, Vec3(0.0f), 1.0f, Vec2(0.0f)}; }
+  Color emitted_towards(const LightPoint&, const Vec3& dir) const override { return intensity_ * falloff(dir); }
   Color power() const override { return intensity_ * (spot_ ? spot_->solid_angle() : 4.0f * kPi); }
   bool is_delta() const override { return true; }
   Bounds bounds() const override;

@@ -16,6 +16,9 @@ OIIO::TextureSystem* texture_system() {
     t->attribute("automip", 1);         // untiled, un-MIP-mapped files are fine
     t->attribute("autotile", 64);
     t->attribute("max_memory_MB", 512.0f);
+    // Colour as stored, not multiplied by alpha (which OpenImageIO does to PNGs by default):
+    // Mitsuba drops the alpha channel of a texture and keeps the colour as it is.
+    t->attribute("unassociatedalpha", 1);
     return t;
   }();
   return ts;
@@ -62,8 +65,12 @@ BitmapTexture::BitmapTexture(const std::string& path, TextureFilter filter, Text
   }
   width_ = spec.width;
   height_ = spec.height;
-  channels_ = spec.nchannels;
+  // The colour channels: all but alpha, as Mitsuba's bitmap (grey-alpha is grey, RGBA is RGB).
+  channels_ = spec.nchannels - (spec.alpha_channel >= 0 && spec.nchannels > 1 ? 1 : 0);
   if (width_ <= 0 || height_ <= 0 || channels_ <= 0) throw InputError(path + ": the texture has no pixels");
+  if (spec.alpha_channel >= 0 && spec.alpha_channel < channels_) {
+    throw InputError(path + ": the texture's alpha channel comes before its colour channels");
+  }
   check_texels(path, spec);
   // 8- and 16-bit images hold display-referred sRGB values unless declared raw.
   srgb_ = !raw && (spec.format == OIIO::TypeDesc::UINT8 || spec.format == OIIO::TypeDesc::UINT16);

@@ -29,7 +29,7 @@ class BitmapTexture final : public Texture {
   TextureWrap wrap_;
   UvTransform to_uv_;
   bool srgb_ = false;
-  int width_ = 0, height_ = 0, channels_ = 3;
+  int width_ = 0, height_ = 0, channels_ = 3;  // colour channels, alpha not counted
 };
 
 }  // namespace caustica

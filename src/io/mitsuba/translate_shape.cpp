@@ -57,8 +57,15 @@ void Translator::shape(const XmlObject& o, const glm::dmat4& parent) {
     weight = ap.get("sampling_weight");
     if (weight) note(p + "/sampling_weight", weight->where);
     refuse_unused(*area, ap);
+    bool given = r != nullptr;
     for (const XmlChild& c : area->children) {
-      throw InputError(c.where + ": a textured area emitter is not supported (a constant radiance is)");
+      // A texture as the radiance (over the shape's UVs).
+      if (c.object->tag != "texture" || c.name != "radiance" || given) {
+        throw InputError(c.where + ": an area emitter takes one radiance, a value or a <texture name=\"radiance\">");
+      }
+      emission = texture(*c.object, p + "/material/emission");
+      given = true;
+      note(p + "/material/emission", c.where);
     }
   }
   std::string material;
