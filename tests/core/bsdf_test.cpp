@@ -321,14 +321,85 @@ TEST_CASE("roughplastic: samples follow pdf, weights are f cos / pdf, a white on
       INFO(name(type) << " alpha 0.2, white, wo at " << deg << " degrees");
       const BsdfReport r = check_bsdf(white, wo, ++seed);
       require_consistent(r, false);
-      // The rough coat's transmittance is 1 minus its albedo, normalised by its average:
-      // lossless like the smooth one.
-      CHECK(r.energy.x == Approx(1.0).margin(5e-3));
+      // Mitsuba's rough coat scatters once: a white rough plastic loses energy, at alpha 0.2
+      // about 5 % for Beckmann and 22 % for GGX (the rough coat's internal reflectance, checked
+      // against an independent integration below).
+      CHECK(r.energy.x < 1.0 + 5e-3);
+      CHECK(r.energy.x > 0.75);
     }
   }
   const Plastic nonlinear(Color(0.8f, 0.4f, 0.1f), Color(1.0f), 1.5f, true, MicrofacetDistribution(MicrofacetType::GGX, 0.4f, 0.4f));
   const Vec3 wo = direction(40.0, 300.0, /*below=*/true);
   require_consistent(check_bsdf(nonlinear, wo, ++seed), false);
+}
+
+namespace {
+// A rough dielectric boundary's directional reflectance and transmittance seen from cos theta,
+// by direct quadrature over the microfacet normals (not the BSDF's visible-normal samples):
+// the integral over h of D_wo(h) (1 - F or F) G1(way out), with D_wo(h) = G1(wo) (wo.h) D(h) / cos.
+// theta_h = atan(alpha s), s = x / (1 - x) for x in [0, 1), keeps the quadrature on the lobe at
+// any alpha and reaches the horizon (GGX's tail there is a few per cent of D_wo at alpha 1).
+std::pair<double, double> rough_boundary_by_quadrature(const MicrofacetDistribution& d, double cos_theta, float eta) {
+  const double alpha = d.alpha_u();
+  const Vec3 wo(float(std::sqrt(1.0 - cos_theta * cos_theta)), 0.0f, float(cos_theta));
+  const int ns = 800, nphi = 128;
+  double r = 0, t = 0;
+  for (int i = 0; i < ns; ++i) {
+    const double x = (i + 0.5) / ns, s = x / (1.0 - x);
+    const double theta = std::atan(alpha * s);
+    const double dtheta = alpha / (1.0 + alpha * alpha * s * s) / ((1.0 - x) * (1.0 - x)) / ns;
+    for (int j = 0; j < nphi; ++j) {
+      const double phi = (j + 0.5) * 2.0 * kPi64 / nphi;
+      const Vec3 h = spherical(theta, phi);
+      const float woh = glm::dot(wo, h);
+      if (woh <= 0.0f) continue;
+      const double density = d.G1(wo) * woh * d.D(h) / cos_theta * std::sin(theta) * dtheta * (2.0 * kPi64 / nphi);
+      const float f = fresnel_dielectric(woh, eta);
+      const Vec3 wr = reflect(wo, h);
+      if (wr.z > 0.0f) r += density * f * d.G1(wr);
+      Vec3 wt;
+      if (f < 1.0f && refract(wo, h, eta, wt) && wt.z < 0.0f) t += density * (1.0 - f) * d.G1(wt);
+    }
+  }
+  return {r, t};
+}
+}  // namespace
+
+TEST_CASE("roughplastic: the diffuse part equals Mitsuba's formula integrated independently, alpha 0.01 to 1",
+          "[core][bsdf]") {
+  // Mitsuba's roughplastic: f_d = rho / (1 - F_int) / (pi eta^2) T(cos_i) T(cos_o), with the rough
+  // coat's transmittance T and internal diffuse reflectance F_int = 2 int R_int(mu) mu dmu.
+  // With specular_reflectance 0 the BSDF is that term alone; its energy from wo is
+  // rho / (1 - F_int) / eta^2 T(cos_o) 2 int T(mu) mu dmu.
+  const float eta = 1.5f;
+  const Color rho(0.8f, 0.5f, 0.2f);
+  for (const MicrofacetType type : {MicrofacetType::Beckmann, MicrofacetType::GGX}) {
+    for (const float alpha : {0.01f, 0.1f, 0.4f, 1.0f}) {
+      const MicrofacetDistribution dist(type, alpha, alpha);
+      const int nmu = 32;
+      double f_int = 0, t_avg = 0;
+      for (int i = 0; i < nmu; ++i) {
+        const double mu = (i + 0.5) / nmu;
+        f_int += rough_boundary_by_quadrature(dist, mu, 1.0f / eta).first * 2.0 * mu / nmu;
+        t_avg += rough_boundary_by_quadrature(dist, mu, eta).second * 2.0 * mu / nmu;
+      }
+      for (const bool nonlinear : {false, true}) {
+        const Plastic plastic(rho, Color(0.0f), eta, nonlinear, dist);
+        for (const double deg : {10.0, 45.0, 75.0}) {
+          const Vec3 wo = direction(deg, 0.0);
+          const double t_o = rough_boundary_by_quadrature(dist, wo.z, eta).second;
+          const Color e = integrate_sphere([&](const Vec3& wi) { return plastic.eval(wo, wi) * std::abs(wi.z); }, 240, 480);
+          for (int c = 0; c < 3; ++c) {
+            const double denom = 1.0 - (nonlinear ? rho[c] * f_int : f_int);
+            const double expected = rho[c] / denom / (eta * eta) * t_o * t_avg;
+            INFO(name(type) << " alpha " << alpha << (nonlinear ? " nonlinear" : "") << " wo at " << deg
+                            << " degrees, channel " << c << ": F_int " << f_int << ", T(wo) " << t_o);
+            CHECK(e[c] == Approx(expected).epsilon(0.01));
+          }
+        }
+      }
+    }
+  }
 }
 
 TEST_CASE("plastic: the coat reflects F, the base the rest, white plastic is lossless", "[core][bsdf]") {

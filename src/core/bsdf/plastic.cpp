@@ -4,6 +4,8 @@
 #include "core/bsdf/diffuse.h"
 #include "core/bsdf/fresnel.h"
 #include "core/sampling.h"
+#include <tbb/parallel_for.h>
+#include <vector>
 
 namespace caustica {
 namespace {
@@ -20,6 +22,33 @@ float diffuse_fresnel(float eta) {
   }
   return float(sum);
 }
+
+// A rough boundary's directional reflectance and transmittance (fractions of energy, single
+// scattering: their sum falls below 1 as the surface gets rougher) for light arriving at cos
+// theta from the side where the relative index is eta; stratified visible normals, m x m. From
+// inside (eta < 1), where total internal reflection makes the rare steep microfacets matter,
+// 96 x 96: with 32 x 32, GGX's R at normal incidence was 20 % high.
+std::pair<double, double> rough_boundary(const MicrofacetDistribution& dist, float cos_theta, float eta) {
+  const int m = eta < 1.0f ? 96 : 32;
+  const float c = std::max(1e-3f, cos_theta);
+  const Vec3 wo(std::sqrt(1.0f - c * c), 0.0f, c);
+  double r = 0, t = 0;
+  for (int i = 0; i < m; ++i) {
+    for (int j = 0; j < m; ++j) {
+      const Vec3 h = dist.sample_visible(wo, Vec2((i + 0.5f) / m, (j + 0.5f) / m));
+      const float woh = glm::dot(wo, h);
+      if (woh <= 0.0f) continue;
+      const float f = fresnel_dielectric(woh, eta);
+      const Vec3 wr = reflect(wo, h);
+      // Visible normals from wo; the way out is masked by Smith's G1, as Mitsuba's
+      // eval_reflectance and eval_transmittance weigh it.
+      if (wr.z > 0.0f) r += double(f) * double(dist.G1(wr));
+      Vec3 wt;
+      if (f < 1.0f && refract(wo, h, eta, wt) && wt.z < 0.0f) t += double(1.0f - f) * double(dist.G1(wt));
+    }
+  }
+  return {r / (m * m), t / (m * m)};
+}
 }  // namespace
 
 Plastic::Plastic(const ColorParam& diffuse, const ColorParam& specular, float eta, bool nonlinear,
@@ -27,25 +56,27 @@ Plastic::Plastic(const ColorParam& diffuse, const ColorParam& specular, float et
     : diffuse_(diffuse), specular_(specular), eta_(eta), nonlinear_(nonlinear), dist_(dist) {
   fdr_internal_ = diffuse_fresnel(1.0f / eta_);
   if (dist_) {
-    // The rough coat's directional albedo E(cos) = integral of F D G / (4 cos_o) over wi,
-    // estimated with a fixed stratified set of visible normals (deterministic).
+    // The rough coat from outside: its directional albedo E(cos) (the integral of
+    // F D G / (4 cos_o) over wi) and transmittance T(cos), tabulated over cos (deterministic).
     rough_albedo_.resize(kAlbedoTable + 1);
-    const int m = 32;
-    for (int k = 0; k <= kAlbedoTable; ++k) {
-      const float c = std::max(1e-3f, float(k) / kAlbedoTable);
-      const Vec3 wo(std::sqrt(1.0f - c * c), 0.0f, c);
-      double sum = 0;
-      for (int i = 0; i < m; ++i) {
-        for (int j = 0; j < m; ++j) {
-          const Vec3 h = dist_->sample_visible(wo, Vec2((i + 0.5f) / m, (j + 0.5f) / m));
-          const float woh = glm::dot(wo, h);
-          const Vec3 wi = reflect(wo, h);
-          if (woh <= 0.0f || wi.z <= 0.0f) continue;
-          sum += double(fresnel_dielectric(woh, eta_)) * double(dist_->G(wo, wi) / dist_->G1(wo));
-        }
-      }
-      rough_albedo_[size_t(k)] = float(sum / (m * m));
-    }
+    rough_transmittance_.resize(kAlbedoTable + 1);
+    tbb::parallel_for(0, kAlbedoTable + 1, [&](int k) {
+      const auto [r, t] = rough_boundary(*dist_, float(k) / kAlbedoTable, eta_);
+      rough_albedo_[size_t(k)] = float(r);
+      rough_transmittance_[size_t(k)] = float(t);
+    });
+    // And from inside, as Mitsuba's roughplastic: the rough coat's own diffuse internal
+    // reflectance, 2 integral of its reflectance (total internal reflection included) cos.
+    // Summed in order, so the result is the same for any thread count.
+    constexpr int n = 48;
+    std::vector<double> terms(n);
+    tbb::parallel_for(0, n, [&](int i) {
+      const double c = (i + 0.5) / n;
+      terms[size_t(i)] = rough_boundary(*dist_, float(c), 1.0f / eta_).first * 2.0 * c / n;
+    });
+    double sum = 0;
+    for (double x : terms) sum += x;
+    fdr_internal_ = float(sum);
   }
   // The coat's diffuse reflectance from outside: 2 integral of its reflectance cos d(cos).
   const int n = 1024;
@@ -63,13 +94,18 @@ uint32_t Plastic::flags() const {
   return f;
 }
 
-float Plastic::coat_reflectance(float cos_theta) const {
-  cos_theta = std::clamp(cos_theta, 0.0f, 1.0f);
-  if (!dist_) return fresnel_dielectric(cos_theta, eta_);
-  const float x = cos_theta * kAlbedoTable;
+namespace {
+float lookup(const std::vector<float>& table, float cos_theta) {
+  const float x = std::clamp(cos_theta, 0.0f, 1.0f) * kAlbedoTable;
   const int i = std::min(int(x), kAlbedoTable - 1);
   const float t = x - float(i);
-  return (1.0f - t) * rough_albedo_[size_t(i)] + t * rough_albedo_[size_t(i) + 1];
+  return (1.0f - t) * table[size_t(i)] + t * table[size_t(i) + 1];
+}
+}  // namespace
+
+float Plastic::coat_reflectance(float cos_theta) const {
+  if (!dist_) return fresnel_dielectric(std::clamp(cos_theta, 0.0f, 1.0f), eta_);
+  return lookup(rough_albedo_, cos_theta);
 }
 
 float Plastic::specular_probability(float cos_o, const ShadingPoint& sp) const {
@@ -80,9 +116,16 @@ float Plastic::specular_probability(float cos_o, const ShadingPoint& sp) const {
 }
 
 Color Plastic::diffuse_eval(const Vec3& wo, const Vec3& wi, const ShadingPoint& sp) const {
-  // rho / (pi (1 - F_dr_ext)) is Mitsuba's rho / (pi eta^2 (1 - F_dr_int)) for a smooth coat;
-  // with the rough coat's own external diffuse reflectance it stays lossless for rho = 1.
   const Color rho = diffuse_.at(sp.uv);
+  if (dist_) {
+    // Mitsuba's roughplastic: rho / (1 - F_dr_int) (nonlinear: 1 - rho F_dr_int) / (pi eta^2)
+    // times the rough coat's transmittance on the way in and out, with the rough coat's own
+    // F_dr_int. Not lossless: the single-scattering coat loses energy as it gets rougher.
+    const Color denom = Color(1.0f) - (nonlinear_ ? rho * fdr_internal_ : Color(fdr_internal_));
+    const float t = lookup(rough_transmittance_, wi.z) * lookup(rough_transmittance_, wo.z);
+    return rho / denom * (t * kInvPi / (eta_ * eta_));
+  }
+  // rho / (pi (1 - F_dr_ext)) is Mitsuba's rho / (pi eta^2 (1 - F_dr_int)) for a smooth coat.
   const Color base = nonlinear_ ? rho * (1.0f - fdr_internal_) / (Color(1.0f) - rho * fdr_internal_) : rho;
   const float t = (1.0f - coat_reflectance(wi.z)) * (1.0f - coat_reflectance(wo.z));
   return base * (t * kInvPi / (1.0f - fdr_external_));

@@ -6,7 +6,9 @@
 // as rho / (pi (1 - F_dr_ext)), the same for a smooth coat; `nonlinear` replaces rho by
 // rho (1 - F_dr_int) / (1 - rho F_dr_int) (Mitsuba's colour shift of repeated bounces). The
 // rough coat's F is its directional albedo, tabulated at construction, and F_dr_ext its
-// average, so that a white rough plastic is lossless too; F_dr_int stays the smooth coat's.
+// average (for sampling and albedo); the rough coat's diffuse term is Mitsuba's: its tabulated
+// transmittance T(cos) on the way in and out, and its own internal F_dr_int (issue 24: the
+// smooth coat's F_dr_int made rough plastic up to 27 % brighter than Mitsuba's).
 #pragma once
 #include <optional>
 #include <vector>
@@ -48,7 +50,8 @@ class Plastic final : public Bsdf {
   std::optional<MicrofacetDistribution> dist_;
   float fdr_internal_ = 0;            // diffuse reflectance of the coat from inside
   float fdr_external_ = 0;            // and from outside
-  std::vector<float> rough_albedo_;  // the rough coat's directional albedo over cos theta
+  std::vector<float> rough_albedo_;        // the rough coat's directional albedo over cos theta
+  std::vector<float> rough_transmittance_;  // and its directional transmittance
 };
 
 }  // namespace caustica
