@@ -9,6 +9,7 @@
 #include <sstream>
 #include <string>
 #include <vector>
+#include "core/bsdf/blend.h"
 #include "core/bsdf/conductor.h"
 #include "core/bsdf/dielectric.h"
 #include "core/bsdf/diffuse.h"
@@ -20,6 +21,7 @@
 #include "core/bsdf/twosided.h"
 #include "core/rng.h"
 #include "core/sampling.h"
+#include "core/textures/checkerboard.h"
 #include "support/chi2.h"
 #include "support/random.h"
 
@@ -923,4 +925,89 @@ TEST_CASE("dielectrics: specular_reflectance and specular_transmittance scale ea
     CHECK(reflected > 0);
     CHECK(transmitted > 0);
   }
+}
+
+// ---- blendbsdf ----------------------------------------------------------------------------
+
+TEST_CASE("blendbsdf: samples follow the mixture's pdf, weights are f cos / pdf, energy is the blend",
+          "[core][bsdf]") {
+  ConductorIor gold;
+  REQUIRE(lookup_conductor("Au", gold));
+  const Lambertian diffuse(Color(0.8f, 0.5f, 0.3f));
+  const RoughConductor metal(MicrofacetDistribution(MicrofacetType::GGX, 0.3f, 0.3f), gold, Color(1.0f));
+  const RoughDielectric glass(MicrofacetDistribution(MicrofacetType::Beckmann, 0.2f, 0.2f), 1.5f);
+  uint64_t seed = 900;
+  for (const float w : {0.25f, 0.7f}) {
+    for (const double deg : {20.0, 65.0}) {
+      const Vec3 wo = direction(deg, 30.0);
+      INFO("weight " << w << ", wo at " << deg << " degrees");
+      const BlendBsdf blend(&diffuse, &metal, Color(w));
+      const BsdfReport r = check_bsdf(blend, wo, ++seed);
+      require_consistent(r, true);
+      // Its energy is the blend of its parts' energies.
+      const Color ea = integrate_sphere([&](const Vec3& wi) { return diffuse.eval(wo, wi) * std::abs(wi.z); });
+      const Color eb = integrate_sphere([&](const Vec3& wi) { return metal.eval(wo, wi) * std::abs(wi.z); });
+      for (int c = 0; c < 3; ++c) CHECK(r.energy[c] == Approx((1 - w) * ea[c] + w * eb[c]).epsilon(1e-4));
+      // Reflection and transmission: diffuse with rough glass.
+      const BlendBsdf frosted(&diffuse, &glass, Color(w));
+      require_consistent(check_bsdf(frosted, wo, ++seed), true);
+    }
+  }
+}
+
+TEST_CASE("blendbsdf: weight 0 and 1 are its parts, a texture weight varies over the surface", "[core][bsdf]") {
+  const Lambertian diffuse(Color(0.6f));
+  const RoughConductor metal(MicrofacetDistribution(MicrofacetType::Beckmann, 0.2f, 0.2f), ConductorIor{}, Color(0.9f));
+  const BlendBsdf first(&diffuse, &metal, Color(0.0f)), second(&diffuse, &metal, Color(1.0f));
+  Rng rng(77);
+  for (int i = 0; i < 200; ++i) {
+    const Vec3 wo = sample_cosine_hemisphere(next2(rng)), wi = sample_cosine_hemisphere(next2(rng));
+    CHECK(first.eval(wo, wi) == diffuse.eval(wo, wi));
+    CHECK(first.pdf(wo, wi) == diffuse.pdf(wo, wi));
+    CHECK(second.eval(wo, wi) == metal.eval(wo, wi));
+    CHECK(second.pdf(wo, wi) == metal.pdf(wo, wi));
+    const Vec2 u = next2(rng);
+    const float ul = rng.next_float();
+    BsdfSample a, b;
+    // Weight 1: the second part's own sample, direction and weight.
+    if (second.sample(wo, u, ul, a) && metal.sample(wo, u, ul, b)) {
+      CHECK(a.wi == b.wi);
+      CHECK(a.weight.x == Approx(b.weight.x).epsilon(1e-5));
+    }
+  }
+  CHECK(first.albedo() == diffuse.albedo());
+  CHECK(second.albedo() == metal.albedo());
+  // A checkerboard weight: 1 in one square, 0 in the next.
+  const CheckerboardTexture checker(Color(1.0f), Color(0.0f), UvTransform{});
+  const BlendBsdf textured(&diffuse, &metal, ColorParam(&checker));
+  ShadingPoint sp;
+  sp.uv = Vec2(0.25f, 0.25f);
+  CHECK(textured.weight(sp) == 1.0f);
+  sp.uv = Vec2(0.75f, 0.25f);
+  CHECK(textured.weight(sp) == 0.0f);
+}
+
+TEST_CASE("blendbsdf: with smooth glass, delta lobes keep their parts' weights", "[core][bsdf]") {
+  // Half diffuse (albedo 0.5), half smooth glass (lossless): the mean sample weight is 0.75.
+  const Lambertian diffuse(Color(0.5f));
+  const Dielectric glass(1.5f, FresnelModel::Exact);
+  const BlendBsdf blend(&diffuse, &glass, Color(0.5f));
+  const Vec3 wo = direction(35.0, 0.0);
+  Rng rng(5);
+  const int n = 400000;
+  double sum = 0;
+  int deltas = 0;
+  for (int i = 0; i < n; ++i) {
+    BsdfSample s;
+    if (!blend.sample(wo, next2(rng), rng.next_float(), s)) continue;
+    sum += s.weight.x;
+    deltas += s.delta ? 1 : 0;
+  }
+  CHECK(sum / n == Approx(0.75).epsilon(0.01));
+  CHECK(double(deltas) / n == Approx(0.5).epsilon(0.01));
+  // Its delta lobes for integrators that follow both: mirror and refraction, each halved.
+  BsdfSample lobes[2], own[2];
+  REQUIRE(blend.specular_lobes(wo, lobes) == 2);
+  REQUIRE(glass.specular_lobes(wo, own) == 2);
+  for (int i = 0; i < 2; ++i) CHECK(lobes[i].weight.x == Approx(0.5f * own[i].weight.x));
 }

@@ -1018,3 +1018,30 @@ TEST_CASE("mitsuba: an area emitter's radiance as a texture", "[mitsuba]") {
              }),
              Contains("an area emitter takes one radiance"));
 }
+
+TEST_CASE("mitsuba: blendbsdf takes two nested BSDFs and a weight, a number or a texture", "[mitsuba]") {
+  const std::string xml = loadable(R"(  <bsdf type="blendbsdf" id="b"><float name="weight" value="0.25"/>
+    <bsdf type="diffuse"/><bsdf type="conductor"/></bsdf>
+  <bsdf type="blendbsdf" id="t"><texture type="checkerboard" name="weight"/>
+    <bsdf type="diffuse"/><bsdf type="plastic"/></bsdf>
+  <shape type="sphere"><ref id="b"/></shape>
+  <shape type="sphere"><point name="center" value="3, 0, 0"/><ref id="t"/></shape>)");
+  const json d = translate(xml);
+  CHECK(d["materials"]["b"]["type"] == "blendbsdf");
+  CHECK(d["materials"]["b"]["bsdf"].size() == 2);
+  CHECK(d["materials"]["b"]["weight"] == 0.25);
+  const LoadedScene loaded = parse_scene(xml, "scene.xml", ".");
+  const Bsdf* b = nullptr;
+  for (size_t i = 0; i < loaded.scene->materials.size(); ++i) {
+    if (loaded.scene->material_names[i] == "b") b = loaded.scene->materials[i].get();
+  }
+  REQUIRE(b != nullptr);
+  // 0.75 of a 0.5 diffuse plus 0.25 of a perfect mirror.
+  CHECK(b->albedo().x == Approx(0.75 * 0.5 + 0.25));
+  CHECK_THAT(error_of([] { translate(xml_scene(R"(  <bsdf type="blendbsdf" id="x"><bsdf type="diffuse"/></bsdf>)")); }),
+             Contains("takes two nested BSDFs"));
+  const std::string heavy = loadable(R"(  <bsdf type="blendbsdf" id="h"><float name="weight" value="1.5"/>
+    <bsdf type="diffuse"/><bsdf type="diffuse"/></bsdf>
+  <shape type="sphere"><ref id="h"/></shape>)");
+  CHECK_THAT(error_of([&] { parse_scene(heavy, "scene.xml", "."); }), Contains("weight must be one number in [0, 1]"));
+}

@@ -1,5 +1,6 @@
 // The shared part of the BSDF interface.
 #include "core/bsdf/bsdf.h"
+#include <algorithm>
 
 namespace caustica {
 
@@ -21,6 +22,12 @@ bool SpecularBsdf::sample(const Vec3& wo, const Vec2&, float u_lobe, BsdfSample&
   s = first ? lobes[0] : lobes[1];
   s.weight = grey(s.weight) ? Color(w0 + w1) : s.weight * ((w0 + w1) / (first ? w0 : w1));
   return true;
+}
+
+float narrowest_glossy(const Bsdf& a, const Bsdf& b) {
+  if (!a.has(kBsdfGlossy)) return b.glossy_roughness();
+  if (!b.has(kBsdfGlossy)) return a.glossy_roughness();
+  return std::min(a.glossy_roughness(), b.glossy_roughness());
 }
 
 bool complete_sample(const Bsdf& m, const Vec3& wo, const Vec3& wi, uint32_t lobe, bool below,

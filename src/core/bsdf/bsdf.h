@@ -64,6 +64,9 @@ class Bsdf {
   bool is_lambertian() const { return flags() == (kBsdfDiffuse | kBsdfReflection); }
 };
 
+// The glossy roughness of a BSDF made of two (twosided, blendbsdf): the narrower glossy lobe's.
+float narrowest_glossy(const Bsdf& a, const Bsdf& b);
+
 // Completes a sample of a non-delta lobe once its direction wi (upper hemisphere, wo's side
 // mirrored up) is chosen: the density and weight come from the BSDF's own pdf() and eval(), so
 // mixtures of lobes stay consistent; `lobe` is recorded, and the direction mirrored back down

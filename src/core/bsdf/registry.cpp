@@ -1,5 +1,6 @@
 // The BSDF family's table: one row a plugin.
 #include "core/bsdf/registry.h"
+#include "core/bsdf/blend.h"
 #include "core/bsdf/conductor.h"
 #include "core/bsdf/dielectric.h"
 #include "core/bsdf/diffuse.h"
@@ -29,6 +30,7 @@ const std::vector<BsdfPlugin>& bsdf_plugins() {
        {"diffuse_reflectance", "specular_reflectance", "int_ior", "ext_ior", "nonlinear", "distribution", "alpha"}},
       {"phong", true, true, Phong::create, {"diffuse_reflectance", "specular_reflectance", "exponent"}},
       {"twosided", true, true, TwoSided::create, {"bsdf"}},
+      {"blendbsdf", true, true, BlendBsdf::create, {"bsdf", "weight"}},
       // No emission on a mask or a null surface: light sampling would see an opaque light
       // that rays pass through.
       {"mask", true, false, Mask::create, {"bsdf", "opacity"}},

@@ -26,13 +26,6 @@ int TwoSided::specular_lobes(const Vec3& wo, BsdfSample* out, const ShadingPoint
   return n;
 }
 
-float TwoSided::glossy_roughness() const {
-  const float a = front_->glossy_roughness(), b = back_->glossy_roughness();
-  if (!front_->has(kBsdfGlossy)) return b;
-  if (!back_->has(kBsdfGlossy)) return a;
-  return std::min(a, b);
-}
-
 std::unique_ptr<Bsdf> TwoSided::create(const Params& p) {
   const std::vector<const Bsdf*> sides = p.bsdfs("bsdf", true);
   return std::make_unique<TwoSided>(sides.front(), sides.back());

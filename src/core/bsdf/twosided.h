@@ -17,7 +17,7 @@ class TwoSided final : public Bsdf {
   bool sample(const Vec3& wo, const Vec2& u, float u_lobe, BsdfSample& s, const ShadingPoint& sp = {}) const override;
   int specular_lobes(const Vec3& wo, BsdfSample* out, const ShadingPoint& sp = {}) const override;
   uint32_t flags() const override { return front_->flags() | back_->flags(); }
-  float glossy_roughness() const override;
+  float glossy_roughness() const override { return narrowest_glossy(*front_, *back_); }
   Color albedo(const ShadingPoint& sp = {}) const override { return front_->albedo(sp); }
   // A two-sided mask or null surface lets rays through as its front does (opacity() does not
   // know the side a ray comes from; one BSDF on both sides is exact).

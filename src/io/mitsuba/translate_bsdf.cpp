@@ -120,9 +120,14 @@ json Translator::bsdf(const XmlObject& o, const std::string& p) {
     } else if (o.type == "mask" && nested.size() == 1) {
       copy_sources(p + "/bsdf/0", p + "/bsdf");
       j["bsdf"] = nested[0];
+    } else if (o.type == "blendbsdf" && nested.size() == 2) {
+      j["bsdf"] = nested;
     } else {
       throw InputError(o.where + ": <bsdf type=\"" + o.type + "\"> takes " +
-                       (o.type == "twosided" ? "one or two nested BSDFs" : o.type == "mask" ? "one nested BSDF" : "no nested BSDF"));
+                       (o.type == "twosided"    ? "one or two nested BSDFs"
+                        : o.type == "mask"      ? "one nested BSDF"
+                        : o.type == "blendbsdf" ? "two nested BSDFs"
+                                                : "no nested BSDF"));
     }
   }
   return j;
