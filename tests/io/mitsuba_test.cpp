@@ -5,7 +5,9 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <functional>
+#include <OpenImageIO/imageio.h>
 #include <nlohmann/json.hpp>
+#include "io/image_io.h"
 #include "io/json_reader.h"
 #include "io/mitsuba/spectrum.h"
 #include "io/mitsuba/translate.h"
@@ -1044,4 +1046,28 @@ TEST_CASE("mitsuba: blendbsdf takes two nested BSDFs and a weight, a number or a
     <bsdf type="diffuse"/><bsdf type="diffuse"/></bsdf>
   <shape type="sphere"><ref id="h"/></shape>)");
   CHECK_THAT(error_of([&] { parse_scene(heavy, "scene.xml", "."); }), Contains("weight must be one number in [0, 1]"));
+}
+
+TEST_CASE("mitsuba: normalmap nests one BSDF; a normal map that is not three channels is refused", "[mitsuba]") {
+  test::TempDir dir;
+  Image normals(2, 2);
+  for (Color& c : normals.pixels) c = Color(0.5f, 0.5f, 1.0f);
+  write_image(dir.file("n.exr"), normals);
+  {
+    auto out = OIIO::ImageOutput::create(dir.file("grey.exr"));
+    REQUIRE(out);
+    const float texels[4] = {0.5f, 0.5f, 0.5f, 0.5f};
+    REQUIRE(out->open(dir.file("grey.exr"), OIIO::ImageSpec(2, 2, 1, OIIO::TypeDesc::FLOAT)));
+    REQUIRE(out->write_image(OIIO::TypeDesc::FLOAT, texels));
+    REQUIRE(out->close());
+  }
+  auto scene = [&](const std::string& file) {
+    return loadable(R"(  <bsdf type="normalmap" id="nm"><texture type="bitmap" name="normalmap"><string name="filename" value=")" +
+                    file + R"("/><boolean name="raw" value="true"/></texture><bsdf type="diffuse"/></bsdf>
+  <shape type="sphere"><ref id="nm"/></shape>)");
+  };
+  const LoadedScene ok = parse_scene(scene("n.exr"), dir.file("scene.xml"), dir.path().string());
+  CHECK(ok.scene->materials.size() >= 2);
+  CHECK_THAT(error_of([&] { parse_scene(scene("grey.exr"), dir.file("scene.xml"), dir.path().string()); }),
+             Contains("a normal map needs three channels"));
 }

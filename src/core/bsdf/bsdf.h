@@ -60,8 +60,8 @@ class Bsdf {
   bool has(uint32_t flag) const { return (flags() & flag) != 0; }
   // Only delta lobes: no direction can be evaluated, only sampled.
   bool is_specular() const { return (flags() & (kBsdfDiffuse | kBsdfGlossy)) == 0; }
-  // A single diffuse reflection lobe: f = albedo / pi everywhere.
-  bool is_lambertian() const { return flags() == (kBsdfDiffuse | kBsdfReflection); }
+  // A single diffuse reflection lobe: f = albedo / pi everywhere (not so under a normal map).
+  virtual bool is_lambertian() const { return flags() == (kBsdfDiffuse | kBsdfReflection); }
 };
 
 // The glossy roughness of a BSDF made of two (twosided, blendbsdf): the narrower glossy lobe's.

@@ -5,6 +5,7 @@
 #include "core/bsdf/dielectric.h"
 #include "core/bsdf/diffuse.h"
 #include "core/bsdf/mask.h"
+#include "core/bsdf/normalmap.h"
 #include "core/bsdf/null.h"
 #include "core/bsdf/phong.h"
 #include "core/bsdf/plastic.h"
@@ -31,6 +32,7 @@ const std::vector<BsdfPlugin>& bsdf_plugins() {
       {"phong", true, true, Phong::create, {"diffuse_reflectance", "specular_reflectance", "exponent"}},
       {"twosided", true, true, TwoSided::create, {"bsdf"}},
       {"blendbsdf", true, true, BlendBsdf::create, {"bsdf", "weight"}},
+      {"normalmap", true, true, NormalMap::create, {"bsdf", "normalmap"}},
       // No emission on a mask or a null surface: light sampling would see an opaque light
       // that rays pass through.
       {"mask", true, false, Mask::create, {"bsdf", "opacity"}},

@@ -19,6 +19,7 @@ class BitmapTexture final : public Texture {
   // filename, filter_type (bilinear, nearest), wrap_mode (repeat, mirror, clamp), raw, to_uv.
   static std::unique_ptr<Texture> create(const Params& p);
   Color eval(const Vec2& uv) const override;
+  int channels() const override { return channels_; }
   int width() const { return width_; }
   int height() const { return height_; }
 

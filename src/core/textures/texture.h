@@ -16,6 +16,8 @@ class Texture {
  public:
   virtual ~Texture() = default;
   virtual Color eval(const Vec2& uv) const = 0;
+  // The colour channels the texture holds (a grey image: 1).
+  virtual int channels() const { return 3; }
 };
 
 // A colour parameter of a BSDF: a constant, or a texture owned by the scene.

@@ -117,7 +117,7 @@ json Translator::bsdf(const XmlObject& o, const std::string& p) {
       // One BSDF: the pointers recorded under /bsdf/0 name it as /bsdf.
       if (nested.size() == 1) copy_sources(p + "/bsdf/0", p + "/bsdf");
       j["bsdf"] = nested.size() == 1 ? nested[0] : nested;
-    } else if (o.type == "mask" && nested.size() == 1) {
+    } else if ((o.type == "mask" || o.type == "normalmap") && nested.size() == 1) {
       copy_sources(p + "/bsdf/0", p + "/bsdf");
       j["bsdf"] = nested[0];
     } else if (o.type == "blendbsdf" && nested.size() == 2) {
@@ -125,7 +125,7 @@ json Translator::bsdf(const XmlObject& o, const std::string& p) {
     } else {
       throw InputError(o.where + ": <bsdf type=\"" + o.type + "\"> takes " +
                        (o.type == "twosided"    ? "one or two nested BSDFs"
-                        : o.type == "mask"      ? "one nested BSDF"
+                        : o.type == "mask" || o.type == "normalmap" ? "one nested BSDF"
                         : o.type == "blendbsdf" ? "two nested BSDFs"
                                                 : "no nested BSDF"));
     }
