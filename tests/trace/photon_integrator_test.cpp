@@ -77,7 +77,7 @@ TEST_CASE("photon: matches the path tracer on the material spheres", "[trace][ph
 TEST_CASE("photon: matches the path tracer on the Mitsuba metals under a textured light", "[trace][photon][reference]") {
   // scenes/mitsuba/metals.xml (issue 24): named conductors from Mitsuba's table, and an area
   // light whose radiance is a checkerboard texture, which photons and shadow rays both follow.
-  check_photon_against_path("scenes/mitsuba/metals.xml", 96, 54, 1024, 32, R"({"photons": 50000, "caustic_photons": 50000})", 0.06);
+  check_photon_against_path("scenes/mitsuba/metals.xml", 96, 54, 512, 32, R"({"photons": 50000, "caustic_photons": 50000})", 0.06);
 }
 
 TEST_CASE("photon: caustic centre under a glass sphere matches the path tracer within 10 %", "[trace][photon][caustic]") {
