@@ -165,6 +165,9 @@ void trace_photon(const Scene& scene, Ray ray, Color flux, bool caustic, const P
   }
 }
 
+// A stop asked for (Ctrl-C): a flag polled between chunks and photons, nothing ordered by it.
+bool stop_requested(const PhotonPassSettings& s) { return s.cancel && s.cancel->load(std::memory_order_relaxed); }
+
 // Emits photons until `wanted` are stored; returns them normalised by the number emitted.
 std::vector<Photon> run_map(const Scene& scene, const PhotonPassSettings& s, bool caustic, uint64_t& emitted_out,
                             float& flux_scale, std::vector<std::string>& warnings) {
@@ -185,12 +188,12 @@ std::vector<Photon> run_map(const Scene& scene, const PhotonPassSettings& s, boo
   uint64_t chunks_in_round = 8;
   bool done = false;
   while (!done && emitted < cap) {
-    if (s.cancel && s.cancel->load()) break;
+    if (stop_requested(s)) break;
     std::vector<std::vector<PendingPhoton>> chunk_out(chunks_in_round);
     std::vector<std::vector<uint32_t>> chunk_counts(chunks_in_round);  // stored per emitted photon
     const uint64_t first = emitted;
     tbb::parallel_for(uint64_t(0), chunks_in_round, [&](uint64_t c) {
-      if (s.cancel && s.cancel->load(std::memory_order_relaxed)) return;
+      if (stop_requested(s)) return;
       auto& out = chunk_out[c];
       auto& counts = chunk_counts[c];
       counts.reserve(kChunk);
@@ -219,7 +222,7 @@ std::vector<Photon> run_map(const Scene& scene, const PhotonPassSettings& s, boo
       stored += keep;
       chunks.push_back(std::move(chunk_out[c]));
     }
-    if (s.cancel && s.cancel->load()) break;
+    if (stop_requested(s)) break;
     // Size the next round from the storage rate seen so far (deterministic).
     const double rate = emitted > 0 ? double(stored) / double(emitted) : 0.0;
     const double need = rate > 0 ? double(wanted - std::min(wanted, stored)) / rate : double(cap);
@@ -227,7 +230,7 @@ std::vector<Photon> run_map(const Scene& scene, const PhotonPassSettings& s, boo
   }
   // A stopped pass keeps nothing: no caller uses part of a map, and normalising and indexing
   // millions of photons would delay the stop by seconds.
-  if (s.cancel && s.cancel->load()) return result;
+  if (stop_requested(s)) return result;
   if (stored < wanted && emitted >= cap) {
     warnings.push_back(std::string(caustic ? "caustic" : "global") + " photon map: only " + std::to_string(stored) +
                        " of " + std::to_string(wanted) + " photons stored after " + std::to_string(emitted) +
@@ -273,7 +276,7 @@ PhotonPassResult trace_photons(const Scene& scene, const PhotonPassSettings& set
   const auto t0 = std::chrono::steady_clock::now();
   PhotonPassResult r;
   r.global = run_map(scene, settings, false, r.global_emitted, r.global_scale, r.warnings);
-  if (!(settings.cancel && settings.cancel->load()))
+  if (!stop_requested(settings))
     r.caustic = run_map(scene, settings, true, r.caustic_emitted, r.caustic_scale, r.warnings);
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return r;

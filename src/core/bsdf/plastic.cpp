@@ -54,38 +54,40 @@ std::pair<double, double> rough_boundary(const MicrofacetDistribution& dist, flo
 Plastic::Plastic(const ColorParam& diffuse, const ColorParam& specular, float eta, bool nonlinear,
                  std::optional<MicrofacetDistribution> dist)
     : diffuse_(diffuse), specular_(specular), eta_(eta), nonlinear_(nonlinear), dist_(dist) {
-  fdr_internal_ = diffuse_fresnel(1.0f / eta_);
-  if (dist_) {
-    // The rough coat from outside: its directional albedo E(cos) (the integral of
-    // F D G / (4 cos_o) over wi) and transmittance T(cos), tabulated over cos (deterministic).
-    rough_albedo_.resize(kAlbedoTable + 1);
-    rough_transmittance_.resize(kAlbedoTable + 1);
-    tbb::parallel_for(0, kAlbedoTable + 1, [&](int k) {
-      const auto [r, t] = rough_boundary(*dist_, float(k) / kAlbedoTable, eta_);
-      rough_albedo_[size_t(k)] = float(r);
-      rough_transmittance_[size_t(k)] = float(t);
-    });
-    // And from inside, as Mitsuba's roughplastic: the rough coat's own diffuse internal
-    // reflectance, 2 integral of its reflectance (total internal reflection included) cos.
-    // Summed in order, so the result is the same for any thread count.
-    constexpr int n = 48;
-    std::vector<double> terms(n);
-    tbb::parallel_for(0, n, [&](int i) {
-      const double c = (i + 0.5) / n;
-      terms[size_t(i)] = rough_boundary(*dist_, float(c), 1.0f / eta_).first * 2.0 * c / n;
-    });
+  if (!dist_) {
+    // The smooth coat's diffuse reflectance from inside, and from outside: 2 integral of its
+    // reflectance cos d(cos).
+    fdr_internal_ = diffuse_fresnel(1.0f / eta_);
+    const int n = 1024;
     double sum = 0;
-    for (double x : terms) sum += x;
-    fdr_internal_ = float(sum);
+    for (int i = 0; i < n; ++i) {
+      const double c = (i + 0.5) / n;
+      sum += double(coat_reflectance(float(c))) * 2.0 * c / n;
+    }
+    fdr_external_ = float(sum);
+    return;
   }
-  // The coat's diffuse reflectance from outside: 2 integral of its reflectance cos d(cos).
-  const int n = 1024;
-  double sum = 0;
-  for (int i = 0; i < n; ++i) {
+  // The rough coat from outside: its directional albedo E(cos) (the integral of
+  // F D G / (4 cos_o) over wi) and transmittance T(cos), tabulated over cos (deterministic).
+  rough_albedo_.resize(kAlbedoTable + 1);
+  rough_transmittance_.resize(kAlbedoTable + 1);
+  tbb::parallel_for(0, kAlbedoTable + 1, [&](int k) {
+    const auto [r, t] = rough_boundary(*dist_, float(k) / kAlbedoTable, eta_);
+    rough_albedo_[size_t(k)] = float(r);
+    rough_transmittance_[size_t(k)] = float(t);
+  });
+  // And from inside, as Mitsuba's roughplastic: the rough coat's own diffuse internal
+  // reflectance, 2 integral of its reflectance (total internal reflection included) cos.
+  // Summed in order, so the result is the same for any thread count.
+  constexpr int n = 48;
+  std::vector<double> terms(n);
+  tbb::parallel_for(0, n, [&](int i) {
     const double c = (i + 0.5) / n;
-    sum += double(coat_reflectance(float(c))) * 2.0 * c / n;
-  }
-  fdr_external_ = float(sum);
+    terms[size_t(i)] = rough_boundary(*dist_, float(c), 1.0f / eta_).first * 2.0 * c / n;
+  });
+  double sum = 0;
+  for (double x : terms) sum += x;
+  fdr_internal_ = float(sum);
 }
 
 uint32_t Plastic::flags() const {
