@@ -24,7 +24,7 @@ Color flux_colour(const Color& power) {
 }
 
 bool visible_from_camera(const Scene& scene, const Photon& ph) {
-  const Vec3 eye = scene.camera.position();
+  const Vec3 eye = scene.camera.eye_for(ph.position);
   const Vec3 n = ph.surface_normal();
   if (glm::dot(n, eye - ph.position) <= 0) return false;  // seen from behind its surface
   return !scene.occluded(spawn_ray_to(eye, Vec3(0.0f), ph.position, n));

@@ -49,6 +49,16 @@ Ray Camera::generate_ray(int px, int py, const Vec2& jitter, const Vec2& lens) c
   return ray;
 }
 
+void Camera::set_orthographic(float view_width, float view_height) {
+  ortho_width_ = view_width;
+  ortho_height_ = view_height;
+}
+
+Vec3 Camera::eye_for(const Vec3& p) const {
+  if (!orthographic()) return position_;
+  return p - glm::dot(p - position_, forward_) * forward_;
+}
+
 void Camera::set_mirror(bool mirror) {
   if (mirror != mirror_) right_ = -right_;
   mirror_ = mirror;
@@ -69,31 +79,39 @@ void Camera::update_tan() {
 
 float Camera::vfov_degrees() const { return 2.0f * std::atan(tan_half_) * 180.0f / kPi; }
 
-namespace {
-Ray film_ray(const Vec3& o, const Vec3& forward, const Vec3& right, const Vec3& up, float tan_half, float aspect,
-             float fx, float fy, int film_w, int film_h) {
-  const float sx = (2.0f * fx / float(film_w) - 1.0f) * tan_half * aspect;
-  const float sy = (1.0f - 2.0f * fy / float(film_h)) * tan_half;
-  return Ray{o, glm::normalize(forward + sx * right + sy * up), kInfinity};
+// The film position (fx, fy) in pixels of the whole film as (sx, sy) in [-1, 1]^2, x right, y up.
+static Vec2 film_to_screen(float fx, float fy, int film_w, int film_h) {
+  return Vec2(2.0f * fx / float(film_w) - 1.0f, 1.0f - 2.0f * fy / float(film_h));
 }
-}  // namespace
 
-Ray Camera::generate_ray(float x, float y) const {
-  return film_ray(position_, forward_, right_, up_, tan_half_, aspect_, x + float(crop_x_), y + float(crop_y_),
-                  film_width_, film_height_);
+Ray Camera::film_ray(float fx, float fy) const {
+  const Vec2 s = film_to_screen(fx, fy, film_width_, film_height_);
+  if (orthographic()) {
+    const float half_h = 0.5f * (ortho_height_ > 0.0f ? ortho_height_ : ortho_width_ / aspect_);
+    return Ray{position_ + (0.5f * ortho_width_ * s.x) * right_ + (half_h * s.y) * up_, forward_, kInfinity};
+  }
+  return Ray{position_, glm::normalize(forward_ + (s.x * tan_half_ * aspect_) * right_ + (s.y * tan_half_) * up_), kInfinity};
 }
+
+Ray Camera::generate_ray(float x, float y) const { return film_ray(x + float(crop_x_), y + float(crop_y_)); }
 
 Ray Camera::generate_ray(int px, int py, const Vec2& jitter) const {
-  return film_ray(position_, forward_, right_, up_, tan_half_, aspect_, float(px + crop_x_) + jitter.x,
-                  float(py + crop_y_) + jitter.y, film_width_, film_height_);
+  return film_ray(float(px + crop_x_) + jitter.x, float(py + crop_y_) + jitter.y);
 }
 
 bool Camera::project(const Vec3& p, float& x, float& y) const {
   const Vec3 d = p - position_;
   const float z = glm::dot(d, forward_);
   if (z <= 0.0f) return false;
-  const float sx = glm::dot(d, right_) / (z * tan_half_ * aspect_);
-  const float sy = glm::dot(d, up_) / (z * tan_half_);
+  float sx, sy;
+  if (orthographic()) {
+    const float half_h = 0.5f * (ortho_height_ > 0.0f ? ortho_height_ : ortho_width_ / aspect_);
+    sx = glm::dot(d, right_) / (0.5f * ortho_width_);
+    sy = glm::dot(d, up_) / half_h;
+  } else {
+    sx = glm::dot(d, right_) / (z * tan_half_ * aspect_);
+    sy = glm::dot(d, up_) / (z * tan_half_);
+  }
   x = 0.5f * (sx + 1.0f) * float(film_width_) - float(crop_x_);
   y = 0.5f * (1.0f - sy) * float(film_height_) - float(crop_y_);
   return x >= 0 && y >= 0 && x < float(width_) && y < float(height_);

@@ -1,4 +1,5 @@
-// Pinhole camera: position, look-at, up, field of view along a chosen axis, film and crop window.
+// Pinhole camera: position, look-at, up, field of view along a chosen axis, film and crop window;
+// or an orthographic one (Mitsuba's `orthographic`): parallel rays from a rectangle of given size.
 #pragma once
 #include "core/math.h"
 
@@ -22,6 +23,13 @@ class Camera {
   // thinlens); radius 0 is the pinhole.
   void set_lens(float aperture_radius, float focus_distance);
   bool has_lens() const { return lens_radius_ > 0.0f; }
+  // Parallel projection: rays along the view direction from a rectangle `view_width` by
+  // `view_height` world units, centred on the position (0 height: the film's aspect).
+  void set_orthographic(float view_width, float view_height);
+  bool orthographic() const { return ortho_width_ > 0.0f; }
+  // Where the camera sees world point p from: its position, or for an orthographic camera the
+  // point on its image plane in front of p.
+  Vec3 eye_for(const Vec3& p) const;
   // Projects a world point to image coordinates; false when behind the camera or off the image.
   bool project(const Vec3& p, float& x, float& y) const;
   // Image (crop window) size in pixels.
@@ -45,6 +53,8 @@ class Camera {
 
  private:
   void update_tan();
+  // The ray through position (fx, fy) of the whole film, in pixels.
+  Ray film_ray(float fx, float fy) const;
   Vec3 position_{0.0f}, forward_{0, 0, 1}, right_{1, 0, 0}, up_{0, 1, 0};
   float fov_ = 45.0f, tan_half_ = 0.414f, aspect_ = 1.0f;
   FovAxis axis_ = FovAxis::Y;
@@ -52,6 +62,7 @@ class Camera {
   float lens_radius_ = 0.0f, focus_distance_ = 1.0f;
   int film_width_ = 1, film_height_ = 1, crop_x_ = 0, crop_y_ = 0;
   int width_ = 1, height_ = 1;
+  float ortho_width_ = 0.0f, ortho_height_ = 0.0f;  // world units; 0: perspective
 };
 
 }  // namespace caustica

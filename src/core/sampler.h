@@ -15,6 +15,9 @@ struct Sampler {
   // The image pixel (y * width + x) this sample belongs to, for integrators that keep per-pixel
   // state (SPPM); in a progressive render each pixel is visited by one thread per pass.
   uint64_t pixel = 0;
+  // The pixel filter's weight of this sample (1 unless the filter has negative lobes): the
+  // render loop scales Li by it; integrators that add to per-pixel state scale that too.
+  float filter_weight = 1.0f;
   Sampler() = default;
   explicit Sampler(uint64_t seed) : rng(seed) {}
   float next1d() { return rng.next_float(); }

@@ -47,31 +47,54 @@ void Loader::apply_overrides() {
 
 void Loader::read_filter(const json& j, const std::string& p) {
   PixelFilter& f = scene().render.filter;
+  static const char* kKnown = "box, gaussian, tent, mitchell, catmullrom, lanczos";
+  auto number_or = [&](const char* key, double fallback, double lo, double hi) {
+    return j.is_object() && j.contains(key) ? r.number_in(j[key], child(p, key), lo, hi) : fallback;
+  };
+  std::string t;
   if (j.is_string()) {
-    const std::string t = r.string(j, p);
-    if (t == "box") f = PixelFilter::box();
-    else if (t == "gaussian") f = PixelFilter::gaussian(0.5f);
-    else if (t == "tent") f = PixelFilter::tent(1.0f);
-    else r.fail(p, "unknown filter \"" + t + "\" (known: box, gaussian, tent)");
-    return;
+    t = r.string(j, p);
+  } else {
+    t = r.string(r.require(j, p, "type"), child(p, "type"));
   }
-  const std::string t = r.string(r.require(j, p, "type"), child(p, "type"));
+  const std::string where = j.is_string() ? p : child(p, "type");
   if (t == "box") {
-    r.check_object(j, p, {"type"});
+    if (j.is_object()) r.check_object(j, p, {"type"});
     f = PixelFilter::box();
   } else if (t == "gaussian") {
-    r.check_object(j, p, {"type", "stddev"});
-    f = PixelFilter::gaussian(j.contains("stddev") ? float(r.number_in(j["stddev"], child(p, "stddev"), 0.05, 16.0)) : 0.5f);
+    if (j.is_object()) r.check_object(j, p, {"type", "stddev"});
+    f = PixelFilter::gaussian(float(number_or("stddev", 0.5, 0.05, 16.0)));
   } else if (t == "tent") {
-    r.check_object(j, p, {"type", "radius"});
-    f = PixelFilter::tent(j.contains("radius") ? float(r.number_in(j["radius"], child(p, "radius"), 0.05, 16.0)) : 1.0f);
+    if (j.is_object()) r.check_object(j, p, {"type", "radius"});
+    f = PixelFilter::tent(float(number_or("radius", 1.0, 0.05, 16.0)));
+  } else if (t == "mitchell") {
+    if (j.is_object()) r.check_object(j, p, {"type", "B", "C"});
+    f = PixelFilter::mitchell(float(number_or("B", 1.0 / 3.0, -2.0, 2.0)), float(number_or("C", 1.0 / 3.0, -2.0, 2.0)));
+  } else if (t == "catmullrom") {
+    if (j.is_object()) r.check_object(j, p, {"type"});
+    f = PixelFilter::mitchell(0.0f, 0.5f, "catmullrom");
+  } else if (t == "lanczos") {
+    if (j.is_object()) r.check_object(j, p, {"type", "lobes"});
+    f = PixelFilter::lanczos(int(j.is_object() && j.contains("lobes") ? r.integer(j["lobes"], child(p, "lobes"), 1, 16) : 3));
   } else {
-    r.fail(child(p, "type"), "unknown filter \"" + t + "\" (known: box, gaussian, tent)");
+    r.fail(where, "unknown filter \"" + t + "\" (known: " + kKnown + ")");
   }
 }
 
 void Loader::read_camera(const json& j, const std::string& p) {
-  r.check_object(j, p, {"position", "look_at", "up", "fov", "fov_axis", "mirror", "aperture_radius", "focus_distance"});
+  r.check_object(j, p, {"type", "position", "look_at", "up", "fov", "fov_axis", "mirror", "aperture_radius", "focus_distance",
+                        "view_width", "view_height"});
+  const std::string type = j.contains("type") ? r.string(j["type"], child(p, "type")) : "perspective";
+  if (type != "perspective" && type != "orthographic") {
+    r.fail(child(p, "type"), "unknown camera type \"" + type + "\" (known: perspective, orthographic)");
+  }
+  const bool ortho = type == "orthographic";
+  for (const char* key : {"fov", "fov_axis", "aperture_radius", "focus_distance"}) {
+    if (ortho && j.contains(key)) r.fail(child(p, key), std::string(key) + " does not apply to an orthographic camera");
+  }
+  for (const char* key : {"view_width", "view_height"}) {
+    if (!ortho && j.contains(key)) r.fail(child(p, key), std::string(key) + " applies to an orthographic camera only (\"type\": \"orthographic\")");
+  }
   const Vec3 pos = r.point(r.require(j, p, "position"), child(p, "position"));
   const Vec3 at = r.point(r.require(j, p, "look_at"), child(p, "look_at"));
   const Vec3 up = scaled_to_unit_max(j.contains("up") ? r.vec3(j["up"], child(p, "up")) : Vec3(0, 1, 0));
@@ -92,6 +115,13 @@ void Loader::read_camera(const json& j, const std::string& p) {
     camera.set_fov(fov, it->second);
   }
   if (j.contains("mirror")) camera.set_mirror(r.boolean(j["mirror"], child(p, "mirror")));
+  if (ortho) {
+    const double vw = r.number_in(r.require(j, p, "view_width"), child(p, "view_width"), 0.0, kMaxCoordinate);
+    const double vh = j.contains("view_height") ? r.number_in(j["view_height"], child(p, "view_height"), 0.0, kMaxCoordinate) : 0.0;
+    if (!(float(vw) > 0.0f)) r.fail(child(p, "view_width"), "view_width must be positive");
+    if (j.contains("view_height") && !(float(vh) > 0.0f)) r.fail(child(p, "view_height"), "view_height must be positive");
+    camera.set_orthographic(float(vw), float(vh));
+  }
   if (j.contains("aperture_radius") || j.contains("focus_distance")) {
     const float radius = float(r.number_in(r.require(j, p, "aperture_radius"), child(p, "aperture_radius"), 0.0, kMaxCoordinate));
     const double focus = r.number_in(r.require(j, p, "focus_distance"), child(p, "focus_distance"), 0.0, kMaxCoordinate);

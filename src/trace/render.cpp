@@ -78,8 +78,9 @@ Image render_image(const Scene& scene, Integrator& integrator, const RenderOptio
           float aov[kA] = {};
           if (want_aov) sampler.aov = aov;
           Vec2 jitter = pixel_jitter(film_pixel, uint64_t(pass), options.job.seed);
-          // Other filters than the box place the sample around the pixel's centre.
-          if (!scene.render.filter.is_box()) jitter = Vec2(0.5f) + scene.render.filter.sample(jitter);
+          // Other filters than the box place the sample around the pixel's centre; one with
+          // negative lobes gives it a weight (negative where the filter is).
+          if (!scene.render.filter.is_box()) jitter = Vec2(0.5f) + scene.render.filter.sample(jitter, &sampler.filter_weight);
           // The lens sample comes first from the pixel's stream, only when there is a lens.
           const Ray ray = scene.camera.has_lens() ? scene.camera.generate_ray(x, y, jitter, sampler.next2d())
                                                   : scene.camera.generate_ray(x, y, jitter);
@@ -88,6 +89,7 @@ Image render_image(const Scene& scene, Integrator& integrator, const RenderOptio
             L = Color(0.0f);
             ++tile_bad;
           }
+          L *= sampler.filter_weight;
           for (int c = 0; c < 3; ++c) add_saturating(sum[pixel * 3 + size_t(c)], to_fixed(L[c]));
           for (int a = 0; a < (want_aov ? kA : 0); ++a) add_saturating(aov_sum[pixel * kA + size_t(a)], to_fixed(aov[a]));
           ++pixel_passes[pixel];

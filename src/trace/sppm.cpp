@@ -108,7 +108,7 @@ Color SppmIntegrator::Li(const Ray& camera_ray, const Scene& scene, Sampler& sam
     const Color estimate = radiance_estimate(map_, hit, wo, with_bounces(est, 1, max_depth - 1 - depth), tls_scratch, &info);
     // radiance_estimate divides by the disc's area; the statistics keep the flux. A non-finite
     // estimate would stay in tau for good: it is dropped, as the render loop drops such samples.
-    const Color phi = path.beta * estimate * (kPi * px.radius * px.radius);
+    const Color phi = sampler.filter_weight * path.beta * estimate * (kPi * px.radius * px.radius);
     if (is_finite(phi)) px.add_pass(info.photons, phi, settings_.alpha);
     break;
   }

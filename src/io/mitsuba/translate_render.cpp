@@ -15,11 +15,16 @@ const std::set<std::string> kIntegrators = {"path", "volpath", "volpathmis", "di
 
 void Translator::sensor(const XmlObject& o) {
   json& doc = out_.doc;
-  if (o.type != "perspective" && o.type != "thinlens") {
-    unsupported(o, "sensor", {"perspective", "thinlens"}, "rendered as a pinhole camera");
+  if (o.type != "perspective" && o.type != "thinlens" && o.type != "orthographic") {
+    unsupported(o, "sensor", {"perspective", "thinlens", "orthographic"}, "rendered as a pinhole camera");
   }
+  const bool ortho = o.type == "orthographic";
   Props props(o);
-  props.ignore({"near_clip", "far_clip", "shutter_open", "shutter_close"});
+  props.ignore({"far_clip", "shutter_open", "shutter_close"});
+  // Mitsuba's orthographic rays start on the near plane; a perspective camera's near clip is ignored.
+  const XmlProperty* near_clip = props.get("near_clip");
+  const double near = ortho && near_clip ? number(*near_clip) : ortho ? 0.01 : 0.0;
+  if (ortho && !(near >= 0.0)) throw InputError(near_clip->where + ": near_clip must not be negative");
   if (o.type != "thinlens") props.ignore({"focus_distance", "aperture_radius"});
   const glm::dmat4 m = props.get("to_world") ? transform(*props.get("to_world")) : glm::dmat4(1.0);
   const glm::dvec3 pos(m[3]), fwd(m * glm::dvec4(0, 0, 1, 0)), up(m * glm::dvec4(0, 1, 0, 0)),
@@ -28,9 +33,27 @@ void Translator::sensor(const XmlObject& o) {
   // look_at one unit ahead, or further where the position is large: in floats, a point one unit
   // from 1e5 would turn the view by a fraction of a degree (and from 2e7 not move at all).
   const double ahead = std::max(1.0, std::max({std::abs(pos.x), std::abs(pos.y), std::abs(pos.z)}) / 256.0);
-  json cam = {{"position", vec(pos)}, {"look_at", vec(pos + ahead * glm::normalize(fwd))}, {"up", vec(glm::normalize(up))}};
+  const glm::dvec3 eye = pos + near * fwd;
+  json cam = {{"position", vec(eye)}, {"look_at", vec(eye + ahead * glm::normalize(fwd))}, {"up", vec(glm::normalize(up))}};
   // Mitsuba's camera space has +x on the image's left; a transform that flips that mirrors the image.
   if (glm::dot(left, glm::cross(up, fwd)) < 0.0) cam["mirror"] = true;
+  if (ortho) {
+    // The view is x in [-1, 1] and y in [-1 / aspect, 1 / aspect] in camera space, scaled by
+    // to_world: the height follows the film's aspect unless to_world scales y unlike x.
+    if (!(glm::length(left) > 0.0)) throw InputError(props.get("to_world")->where + ": the camera transform is singular");
+    cam["type"] = "orthographic";
+    cam["view_width"] = 2.0 * glm::length(left);
+    note("/camera", o.where);
+    doc["camera"] = cam;
+    render_settings(o);
+    const double y_over_x = glm::length(up) / glm::length(left);
+    if (std::abs(y_over_x - 1.0) > 1e-6) {
+      const double aspect = double(doc["render"]["width"].get<int64_t>()) / double(doc["render"]["height"].get<int64_t>());
+      doc["camera"]["view_height"] = 2.0 * glm::length(up) / aspect;
+    }
+    refuse_unused(o, props);
+    return;
+  }
   double fov = 0.0;
   std::string axis = "x";
   if (const XmlProperty* f = props.get("fov")) {
@@ -73,7 +96,11 @@ void Translator::sensor(const XmlObject& o) {
     }
   }
   refuse_unused(o, props);
-  json& render = doc["render"];
+  render_settings(o);
+}
+
+void Translator::render_settings(const XmlObject& o) {
+  json& render = out_.doc["render"];
   render["width"] = 768;
   render["height"] = 576;
   render["spp"] = 4;
@@ -144,12 +171,27 @@ void Translator::rfilter(const XmlObject& o) {
     const XmlProperty* r = props.get("radius");
     render["filter"] = {{"type", "tent"}, {"radius", r ? number(*r) : 1.0}};
     if (r) note("/render/filter/radius", r->where);
+  } else if (o.type == "mitchell") {
+    json f = {{"type", "mitchell"}};
+    for (const char* key : {"B", "C"}) {
+      if (const XmlProperty* v = props.get(key)) {
+        f[key] = number(*v);
+        note(std::string("/render/filter/") + key, v->where);
+      }
+    }
+    render["filter"] = f;
+  } else if (o.type == "catmullrom") {
+    render["filter"] = {{"type", "catmullrom"}};
+  } else if (o.type == "lanczos") {
+    json f = {{"type", "lanczos"}};
+    if (const XmlProperty* v = props.get("lobes")) {
+      f["lobes"] = integer(*v);
+      note("/render/filter/lobes", v->where);
+    }
+    render["filter"] = f;
   } else {
-    // Filters with negative lobes (mitchell, catmullrom, lanczos) cannot be sampled with
-    // weight 1; the Gaussian is the nearest positive one.
-    warn(o.where, "reconstruction filter \"" + o.type + "\" is rendered as a Gaussian of stddev 0.5 (box, gaussian and tent are supported)");
-    render["filter"] = {{"type", "gaussian"}, {"stddev", 0.5}};
-    props.ignore({"radius", "lobes", "B", "C", "b", "c"});
+    throw InputError(o.where + ": unknown reconstruction filter \"" + o.type +
+                     "\" (known: box, gaussian, tent, mitchell, catmullrom, lanczos)");
   }
   refuse_unused(o, props);
 }

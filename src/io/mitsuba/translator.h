@@ -114,6 +114,8 @@ class Translator {
   void film(const XmlObject& o);
 
   void rfilter(const XmlObject& o);
+  // The sensor's film and sampler (Mitsuba's defaults where absent).
+  void render_settings(const XmlObject& sensor);
 
   void sampler(const XmlObject& o);
 
