@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Renders the README's gallery into docs/images/ (about 6 minutes on 2 cores, most of it the
+# Renders the README's gallery into docs/images/ (about 9 minutes on 2 cores, most of it the
 # path-traced reference, which is kept in build/gallery/ and reused by later runs).
 # Usage: bash scripts/make_gallery.sh [--fresh]   (--fresh renders the reference again)
 set -euo pipefail
@@ -30,6 +30,8 @@ $C render scenes/caustic-ring.json --integrator photon --width 400 --height 400 
   -o "$out/caustic-ring.png"
 $C render scenes/material-spheres.json --integrator photon --width 816 --height 272 --spp 32 --seed 1 -q \
   -o "$out/material-spheres.png"
+$C render scenes/mitsuba/principled.xml --integrator photon --width 640 --height 360 --spp 32 --seed 1 -q \
+  -o "$out/mitsuba-principled.png"
 
 echo "gallery: photon maps"
 $C photons scenes/cornell-spheres.json --map both --width 320 --height 320 --seed 1 -q \

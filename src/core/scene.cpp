@@ -83,12 +83,18 @@ bool Scene::intersect_opaque(const Ray& ray, SurfaceHit& hit) const {
   hit.material = materials[prim.material].get();
   hit.light = prim.light;
   Vec3 ns = hit.n;
-  Vec3 dpdu(0.0f);  // orients anisotropic BSDFs, as Mitsuba's shading frames do
+  // dp/du orients anisotropic BSDFs, as Mitsuba's shading frames do; with dp/dv it bends
+  // bump-mapped normals.
+  Vec3 dpdu(0.0f), dpdv(0.0f), tangent(0.0f);
   hit.sp.uv = Vec2(0.0f);
   if (prim.kind == ShapeKind::Sphere) {
+    // u = phi / 2 pi, v = theta / pi (sphere_uv).
     const Vec3 d = (hit.p - prim.p0) / prim.radius();
     hit.sp.uv = sphere_uv(d);
-    dpdu = Vec3(-d.y, d.x, 0.0f);
+    const float r = prim.radius(), sin_theta = std::sqrt(d.x * d.x + d.y * d.y);
+    tangent = Vec3(-d.y, d.x, 0.0f);
+    dpdu = (2.0f * kPi * r) * tangent;
+    if (sin_theta > 1e-6f) dpdv = (kPi * r) * Vec3(d.z * d.x / sin_theta, d.z * d.y / sin_theta, -sin_theta);
   } else if (prim.attributes != kNoAttributes) {
     const TriangleAttributes& a = attributes[prim.attributes];
     const Vec3 b = barycentrics(prim, hit.p);
@@ -96,7 +102,11 @@ bool Scene::intersect_opaque(const Ray& ray, SurfaceHit& hit) const {
       hit.sp.uv = b.x * a.uv[0] + b.y * a.uv[1] + b.z * a.uv[2];
       const Vec2 duv1 = a.uv[1] - a.uv[0], duv2 = a.uv[2] - a.uv[0];
       const float det = duv1.x * duv2.y - duv1.y * duv2.x;
-      if (std::abs(det) > 1e-12f) dpdu = (duv2.y * (prim.p1 - prim.p0) - duv1.y * (prim.p2 - prim.p0)) / det;
+      if (std::abs(det) > 1e-12f) {
+        const Vec3 e1 = prim.p1 - prim.p0, e2 = prim.p2 - prim.p0;
+        dpdu = tangent = (duv2.y * e1 - duv1.y * e2) / det;
+        dpdv = (duv1.x * e2 - duv2.x * e1) / det;
+      }
     }
     if (a.has_normals) {
       const Vec3 n = b.x * a.n[0] + b.y * a.n[1] + b.z * a.n[2];
@@ -105,7 +115,9 @@ bool Scene::intersect_opaque(const Ray& ray, SurfaceHit& hit) const {
       if (glm::dot(ns, hit.n) < 0.0f) ns = -ns;  // the winding decides the side; the normals only bend it
     }
   }
-  hit.frame = Frame(ns, dpdu);
+  hit.frame = Frame(ns, tangent);
+  hit.sp.dpdu = hit.frame.to_local(dpdu);
+  hit.sp.dpdv = hit.frame.to_local(dpdv);
   return true;
 }
 

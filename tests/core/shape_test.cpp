@@ -5,6 +5,7 @@
 #include "core/sampling.h"
 #include "support/random.h"
 #include "core/shape.h"
+#include "io/scene_loader.h"
 
 using namespace caustica;
 using test::next2;
@@ -299,4 +300,52 @@ TEST_CASE("intersect_triangle: rays aimed at shared edges of a closed mesh do no
   }
   INFO(escaped << " of " << n << " rays escaped through an edge");
   CHECK(escaped == 0);
+}
+
+TEST_CASE("shading point: dp/du and dp/dv of spheres and UV-mapped triangles match finite differences", "[core][shape]") {
+  // A sphere (u = phi / 2 pi, v = theta / pi about +z) and a quad whose uvs are stretched and
+  // sheared against its edges.
+  const LoadedScene loaded = parse_scene(R"({"camera": {"position": [0, 0, 9], "look_at": [0, 0, 0]},
+    "materials": {"w": {"type": "diffuse"}},
+    "objects": [{"type": "sphere", "center": [1, -2, 0.5], "radius": 1.5, "material": "w"},
+                {"type": "mesh", "material": "w", "vertices": [[4, 0, 0], [7, 0, 0], [7, 2, 0], [4, 2, 0]],
+                 "uvs": [[0, 0], [0.5, 0.25], [0.75, 1.25], [0.25, 1]], "indices": [[0, 1, 2], [0, 2, 3]]}]})",
+                                         "s.json", ".");
+  const Scene& scene = *loaded.scene;
+  Rng rng(11);
+  auto world = [](const SurfaceHit& h, const Vec3& v) { return h.frame.to_world(v); };
+  int checked = 0;
+  for (int i = 0; i < 200; ++i) {
+    // Rays at the sphere's upper half (away from the poles) and at the quad.
+    const bool sphere = i % 2 == 0;
+    const Vec3 target = sphere ? Vec3(1.0f, -2.0f, 0.5f) + 1.5f * glm::normalize(Vec3(rng.next_float() - 0.5f, rng.next_float() - 0.5f, 0.6f))
+                               : Vec3(4.2f + 2.6f * rng.next_float(), 0.2f + 1.6f * rng.next_float(), 0.0f);
+    const Vec3 origin = target + Vec3(0.0f, 0.0f, 6.0f);
+    SurfaceHit h;
+    REQUIRE(scene.intersect(Ray{origin, glm::normalize(target - origin), kInfinity}, h));
+    const Vec3 dpdu = world(h, h.sp.dpdu), dpdv = world(h, h.sp.dpdv);
+    if (sphere) {
+      // p(u, v) on the sphere, differentiated numerically.
+      auto p = [](double u, double v) {
+        const double phi = 2 * 3.14159265358979 * u, theta = 3.14159265358979 * v;
+        return glm::dvec3(1, -2, 0.5) + 1.5 * glm::dvec3(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta));
+      };
+      const double e = 1e-5, u = h.sp.uv.x, v = h.sp.uv.y;
+      const glm::dvec3 du = (p(u + e, v) - p(u - e, v)) / (2 * e), dv = (p(u, v + e) - p(u, v - e)) / (2 * e);
+      CHECK(glm::length(glm::dvec3(dpdu) - du) < 1e-3 * glm::length(du) + 1e-4);
+      CHECK(glm::length(glm::dvec3(dpdv) - dv) < 1e-3 * glm::length(dv) + 1e-4);
+    } else {
+      // The quad's affine map from uv to position: solved from its first triangle's corners.
+      // (0,0)->(4,0), (0.5,0.25)->(7,0), (0.75,1.25)->(7,2): p = P0 + A (u, v).
+      const glm::dmat2 uv(0.5, 0.25, 0.75, 1.25);
+      const glm::dmat2 xy(3, 0, 3, 2);
+      const glm::dmat2 a = xy * glm::inverse(uv);
+      if (h.p.x - 4.0f < 1.5f * h.p.y) continue;  // the first triangle only (the second's map differs)
+      CHECK(glm::length(glm::dvec2(dpdu) - a[0]) < 1e-4);
+      CHECK(glm::length(glm::dvec2(dpdv) - a[1]) < 1e-4);
+      CHECK(std::abs(dpdu.z) < 1e-5f);
+    }
+    ++checked;
+  }
+  CHECK(checked > 100);
 }

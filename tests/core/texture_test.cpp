@@ -9,6 +9,8 @@
 #include "core/textures/bitmap.h"
 #include "core/textures/checkerboard.h"
 #include "support/temp_dir.h"
+#include "core/rng.h"
+#include "core/math.h"
 
 using namespace caustica;
 using Catch::Matchers::Contains;
@@ -215,4 +217,45 @@ TEST_CASE("shading frames follow dp/du: along phi on spheres, along edge1 on qua
   REQUIRE(s.scene->intersect(Ray{Vec3(5.5f, 0, -3), Vec3(0, 0, 1)}, hit));
   CHECK(hit.frame.s.y == Approx(1.0f).margin(1e-5));  // edge1 runs along +y
   CHECK(std::abs(hit.frame.t.x) == Approx(1.0f).margin(1e-5));
+}
+
+TEST_CASE("bitmap: the gradient is the bilinear lookup's derivative, through sRGB decoding and to_uv", "[core][texture]") {
+  test::TempDir dir;
+  Image img(5, 3);
+  Rng rng(17);
+  for (Color& c : img.pixels) c = Color(rng.next_float(), rng.next_float(), rng.next_float());
+  for (const char* name : {"g.exr", "g.png"}) {  // linear floats, and 8-bit sRGB
+    const std::string path = dir.file(name);
+    write_image(path, img);
+    UvTransform rotated;
+    rotated.m00 = 0.6f, rotated.m01 = -0.8f, rotated.m10 = 0.8f, rotated.m11 = 0.6f, rotated.tx = 0.1f;
+    for (const UvTransform& to_uv : {UvTransform{}, rotated}) {
+      const BitmapTexture t(path, TextureFilter::Bilinear, TextureWrap::Repeat, to_uv, false);
+      auto value = [&](const Vec2& uv) { return double(luminance(t.eval(uv))); };
+      int checked = 0;
+      for (int i = 0; i < 400 && checked < 60; ++i) {
+        const Vec2 uv(rng.next_float(), rng.next_float());
+        // Away from the lines through texel centres, where the bilinear lookup has kinks.
+        const Vec2 st = to_uv.apply(uv);
+        const float fx = st.x * 5.0f - 0.5f, fy = st.y * 3.0f - 0.5f;
+        const float dx = fx - std::floor(fx), dy = fy - std::floor(fy);
+        if (dx < 0.1f || dx > 0.9f || dy < 0.1f || dy > 0.9f) continue;
+        Vec2 g;
+        REQUIRE(t.gradient(uv, g));
+        constexpr float h = 1e-3f;
+        const double du = (value(uv + Vec2(h, 0)) - value(uv - Vec2(h, 0))) / (2 * h);
+        const double dv = (value(uv + Vec2(0, h)) - value(uv - Vec2(0, h))) / (2 * h);
+        INFO(name << " uv " << uv.x << ", " << uv.y);
+        CHECK(g.x == Approx(du).margin(0.02 + 0.01 * std::abs(du)));
+        CHECK(g.y == Approx(dv).margin(0.02 + 0.01 * std::abs(dv)));
+        ++checked;
+      }
+      CHECK(checked >= 30);
+    }
+  }
+  // A nearest lookup is constant between texels: gradient zero, as Mitsuba's.
+  const BitmapTexture nearest(dir.file("g.exr"), TextureFilter::Nearest, TextureWrap::Repeat, UvTransform{}, false);
+  Vec2 g(1.0f);
+  REQUIRE(nearest.gradient(Vec2(0.3f, 0.4f), g));
+  CHECK(g == Vec2(0.0f));
 }

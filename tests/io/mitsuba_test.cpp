@@ -1071,3 +1071,115 @@ TEST_CASE("mitsuba: normalmap nests one BSDF; a normal map that is not three cha
   CHECK_THAT(error_of([&] { parse_scene(scene("grey.exr"), dir.file("scene.xml"), dir.path().string()); }),
              Contains("a normal map needs three channels"));
 }
+
+TEST_CASE("mitsuba: bumpmap takes its height from its unnamed texture; a flat height leaves the image unchanged", "[mitsuba]") {
+  test::TempDir dir;
+  Image flat(4, 4);
+  for (Color& c : flat.pixels) c = Color(0.3f);
+  write_image(dir.file("flat.exr"), flat);
+  const std::string quad = R"(<shape type="rectangle"><transform name="to_world"><rotate x="1" angle="-90"/></transform>)";
+  auto scene = [&](const std::string& bsdf) {
+    return R"(<scene version="3.0.0">
+  <sensor type="perspective"><float name="fov" value="40"/>
+    <transform name="to_world"><lookat origin="0, 3, 3" target="0, 0, 0" up="0, 1, 0"/></transform>
+    <film type="hdrfilm"><integer name="width" value="16"/><integer name="height" value="16"/>
+      <rfilter type="box"/></film></sensor>
+  <emitter type="point"><point name="position" x="0.5" y="2" z="0.5"/><rgb name="intensity" value="4"/></emitter>
+)" + quad + bsdf + "</shape></scene>";
+  };
+  const std::string bumped = R"(<bsdf type="bumpmap"><texture type="bitmap"><string name="filename" value="flat.exr"/></texture>
+    <float name="scale" value="4"/><bsdf type="diffuse"><rgb name="reflectance" value="0.6"/></bsdf></bsdf>)";
+  const std::string plain = R"(<bsdf type="diffuse"><rgb name="reflectance" value="0.6"/></bsdf>)";
+  const TranslatedScene t = read_mitsuba(scene(bumped), dir.file("scene.xml"), dir.path().string(), {});
+  const json& m = t.doc["materials"].begin().value();
+  CHECK(m["type"] == "bumpmap");
+  CHECK(m["scale"] == 4.0);
+  CHECK(m["height"]["type"] == "bitmap");
+  CHECK(m["bsdf"]["type"] == "diffuse");
+  auto render = [&](const std::string& bsdf) {
+    LoadedScene s = parse_scene(scene(bsdf), dir.file("scene.xml"), dir.path().string());
+    auto integ = create_integrator("path", JsonSource{}, s.scene->render);
+    integ->preprocess(*s.scene, {1, true});
+    RenderOptions options;
+    options.job.passes = 2;
+    options.quiet = true;
+    RenderStats stats;
+    return render_image(*s.scene, *integ, options, stats);
+  };
+  const Image a = render(bumped), b = render(plain);
+  double mean = 0;
+  for (size_t i = 0; i < a.pixels.size(); ++i) {
+    CHECK(a.pixels[i] == b.pixels[i]);
+    mean += a.pixels[i].x;
+  }
+  CHECK(mean / double(a.pixels.size()) > 0.01);  // the quad is lit and seen
+  CHECK_THAT(error_of([&] { translate(xml_scene(R"(  <bsdf type="bumpmap" id="x"><bsdf type="diffuse"/><bsdf type="diffuse"/></bsdf>)")); }),
+             Contains("takes one nested BSDF"));
+  CHECK_THAT(error_of([&] {
+               parse_scene(scene(R"(<bsdf type="bumpmap"><texture type="checkerboard"/><bsdf type="diffuse"/></bsdf>)"),
+                           dir.file("scene.xml"), dir.path().string());
+             }),
+             Contains("a bump map's height texture must be a bitmap"));
+}
+
+TEST_CASE("mitsuba: principled and principledthin with numbers and textures", "[mitsuba]") {
+  const json doc = translate(xml_scene(R"(  <bsdf type="principled" id="p">
+    <texture type="checkerboard" name="base_color"><rgb name="color0" value="0.1, 0.2, 0.3"/></texture>
+    <texture type="checkerboard" name="roughness"/>
+    <float name="metallic" value="0.3"/><float name="specular" value="0.6"/><float name="clearcoat" value="1"/>
+    <float name="main_specular_sampling_rate" value="2"/>
+  </bsdf>
+  <bsdf type="principledthin" id="t"><float name="diff_trans" value="1.5"/><float name="eta" value="1.33"/></bsdf>)"));
+  const json& p = doc["materials"]["p"];
+  CHECK(p["type"] == "principled");
+  CHECK(p["base_color"]["type"] == "checkerboard");
+  CHECK(p["roughness"]["type"] == "checkerboard");
+  CHECK(p["metallic"] == 0.3);
+  CHECK(p["specular"] == 0.6);
+  CHECK(p["main_specular_sampling_rate"] == 2.0);
+  CHECK(doc["materials"]["t"]["diff_trans"] == 1.5);
+  CHECK(doc["materials"]["t"]["eta"] == 1.33);
+  // Loaded: the principled BSDF with its parameters; a bad one named where it is.
+  const std::string bad = loadable(R"(  <bsdf type="principled" id="b"><float name="sheen" value="3"/></bsdf>
+  <shape type="sphere"><ref id="b"/></shape>)");
+  CHECK_THAT(error_of([&] { parse_scene(bad, "scene.xml", "."); }), Contains("sheen must be from 0 to 1"));
+  CHECK_THAT(error_of([&] { parse_scene(bad, "scene.xml", "."); }), Contains("scene.xml:"));
+}
+
+TEST_CASE("mitsuba: 0.6's ward, coating and roughcoating with their camelCase names", "[mitsuba]") {
+  const json doc = translate(xml_scene(R"(  <bsdf type="coating" id="c"><float name="intIOR" value="1.7"/>
+    <rgb name="sigmaA" value="0.1, 0.2, 0.3"/><float name="thickness" value="2"/><bsdf type="diffuse"/></bsdf>
+  <bsdf type="roughcoating" id="r"><float name="alpha" value="0.3"/><bsdf type="diffuse"/></bsdf>
+  <bsdf type="ward" id="w"><float name="alphaU" value="0.1"/><float name="alphaV" value="0.2"/>
+    <string name="variant" value="ward-duer"/></bsdf>)", "0.6.0"));
+  const json& c = doc["materials"]["c"];
+  CHECK(c["type"] == "coating");
+  CHECK(c["int_ior"] == 1.7);
+  CHECK(c["thickness"] == 2.0);
+  CHECK(c["sigma_a"].is_array());
+  CHECK(c["bsdf"]["type"] == "diffuse");
+  CHECK(doc["materials"]["r"]["distribution"] == "beckmann");  // Mitsuba's default
+  CHECK(doc["materials"]["w"]["alpha_u"] == 0.1);
+  CHECK(doc["materials"]["w"]["variant"] == "ward-duer");
+  CHECK_THAT(error_of([] { translate(xml_scene(R"(  <bsdf type="coating" id="x"><bsdf type="diffuse"/><bsdf type="diffuse"/></bsdf>)")); }),
+             Contains("takes one nested BSDF"));
+}
+
+TEST_CASE("mitsuba: a spot's texture and a projector", "[mitsuba]") {
+  const json doc = translate(xml_scene(R"(  <emitter type="spot"><transform name="to_world"><lookat origin="0, 5, 0" target="0, 0, 0" up="0, 0, 1"/></transform>
+    <texture type="checkerboard" name="texture"/></emitter>
+  <emitter type="projector"><transform name="to_world"><lookat origin="1, 2, 3" target="0, 0, 0" up="0, 1, 0"/></transform>
+    <texture type="checkerboard" name="irradiance"/><float name="scale" value="3"/><string name="focal_length" value="35mm"/></emitter>)"));
+  const json& spot = doc["lights"][0];
+  CHECK(spot["type"] == "spot");
+  CHECK(spot["texture"]["type"] == "checkerboard");
+  CHECK(spot["up"][2].get<double>() == Approx(1.0));
+  const json& proj = doc["lights"][1];
+  CHECK(proj["type"] == "projector");
+  CHECK(proj["irradiance"]["type"] == "checkerboard");
+  CHECK(proj["scale"] == 3.0);
+  CHECK(proj["fov_axis"] == "diagonal");
+  CHECK(proj["fov"].get<double>() == Approx(2.0 * std::atan(std::sqrt(36.0 * 36.0 + 24.0 * 24.0) / 70.0) * 180.0 / 3.14159265358979));
+  CHECK_THAT(error_of([] { translate(xml_scene(R"(  <emitter type="point"><texture type="checkerboard" name="texture"/></emitter>)")); }),
+             Contains("<texture"));
+}

@@ -6,6 +6,8 @@
 #include "io/scene_loader.h"
 #include "photon/photon_tracer.h"
 #include "support/render_util.h"
+#include "support/temp_dir.h"
+#include "io/image_io.h"
 
 using namespace caustica;
 using test::floor_scene;
@@ -101,4 +103,64 @@ TEST_CASE("mask: a quarter-opaque blocker passes three quarters of the light, in
     // Camera rays also cross the veil: 0.75 of them reach the floor, which gets 0.75 of the light.
     CHECK(r.image.mean().x == Approx(0.5 / 3.14159265358979 * 4.0 * 0.75 * 0.75).epsilon(0.03));
   }
+}
+
+namespace {
+// A floor seen from 4 above (image left = world +x, image top = world +z), lit by `light`; a 2 x 1
+// image file of two texels (left, right) for the light's texture.
+std::string lit_floor(const std::string& light) {
+  return R"({"camera": {"position": [0, 4, 0], "look_at": [0, 0, 0], "up": [0, 0, 1], "fov": 20},
+    "materials": {"floor": {"type": "diffuse", "reflectance": 0.5}},
+    "objects": [{"type": "quad", "origin": [-50, 0, -50], "edge1": [0, 0, 100], "edge2": [100, 0, 0], "material": "floor"}],
+    "lights": [)" + light + "]}";
+}
+std::string two_texels(const test::TempDir& dir, const Color& left, const Color& right) {
+  Image img(2, 1);
+  img.pixels = {left, right};
+  const std::string path = dir.file("two.exr");
+  write_image(path, img);
+  return path;
+}
+}  // namespace
+
+TEST_CASE("projector: a floor reads scale E / h^2 where the image falls, the image as a camera there sees it", "[trace][light]") {
+  test::TempDir dir;
+  const std::string image = two_texels(dir, Color(0.8f, 0.2f, 0.2f), Color(0.2f, 0.2f, 0.8f));
+  // 2 above the floor, looking down, up +z: the image's left (u < 1/2) falls on world +x. A
+  // perpendicular plane at distance h gets irradiance pi scale E / h^2 everywhere: a diffuse
+  // floor of 0.5 reads 0.5 scale E / h^2 = E / 4 with scale 2.
+  const std::string scene = lit_floor(R"({"type": "projector", "position": [0, 2, 0], "target": [0, 0, 0], "up": [0, 0, 1],
+      "fov": 40, "scale": 2, "irradiance": {"type": "bitmap", "filename": ")" + image + R"(", "filter_type": "nearest"}})");
+  for (const char* integrator : {"path", "photon"}) {
+    INFO(integrator);
+    const auto r = render_text(scene, integrator, R"({})", 16, 16, 16);
+    const glm::dvec3 left = test::region_mean(r.image, 1, 6, 7, 10), right = test::region_mean(r.image, 9, 6, 15, 10);
+    CHECK(left.x == Approx(0.8 / 4).epsilon(0.02));
+    CHECK(left.z == Approx(0.2 / 4).epsilon(0.02));
+    CHECK(right.x == Approx(0.2 / 4).epsilon(0.02));
+    CHECK(right.z == Approx(0.8 / 4).epsilon(0.02));
+    // Outside the image (the aspect is 2: z beyond 2 tan 20 / 2 = 0.36), dark.
+    CHECK(test::region_mean(r.image, 0, 0, 16, 2).x < 1e-3);
+  }
+}
+
+TEST_CASE("spot light: a texture on the cone, the right way round and of the right value", "[trace][light]") {
+  test::TempDir dir;
+  const std::string image = two_texels(dir, Color(1.0f, 0.0f, 0.0f), Color(0.0f, 0.0f, 1.0f));
+  // Mitsuba's spot maps u = 1/2 + x / (2 z tan cutoff), x = cross(up, axis) = world +x here: the
+  // right texel (u > 1/2) falls on world +x, the image's left. Within 0.26 of the axis,
+  // cos^3 > 0.97: E = I / h^2.
+  const std::string scene = lit_floor(R"({"type": "spot", "position": [0, 2, 0], "target": [0, 0, 0], "up": [0, 0, 1],
+      "intensity": 4, "cutoff_angle": 30, "beam_width": 30,
+      "texture": {"type": "bitmap", "filename": ")" + image + R"(", "filter_type": "nearest"}})");
+  const auto r = render_text(scene, "path", "{}", 16, 16, 16);
+  const glm::dvec3 left = test::region_mean(r.image, 5, 7, 7, 9), right = test::region_mean(r.image, 9, 7, 11, 9);
+  const double expected = 0.5 / 3.14159265358979 * 4.0 / 4.0;
+  CHECK(left.z == Approx(expected).epsilon(0.03));
+  CHECK(left.x < 1e-4);
+  CHECK(right.x == Approx(expected).epsilon(0.03));
+  CHECK(right.z < 1e-4);
+  // The photon integrator (direct light by the same shadow rays) agrees.
+  const auto pm = render_text(scene, "photon", "{}", 16, 16, 16);
+  CHECK(test::region_mean(pm.image, 0, 0, 16, 16).x == Approx(test::region_mean(r.image, 0, 0, 16, 16).x).epsilon(0.02));
 }

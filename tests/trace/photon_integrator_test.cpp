@@ -1,5 +1,6 @@
 // Photon mapping against analytic results and against the path tracer.
 #include <catch2/catch.hpp>
+#include <filesystem>
 #include "support/render_util.h"
 #include "support/scenes.h"
 #include "trace/photon_integrator.h"
@@ -37,7 +38,8 @@ TEST_CASE("photon: identical pixels for 1 and 2 threads", "[trace][photon][deter
 static void check_photon_against_path(const char* file, int width, int height, int path_spp, int photon_spp,
                                       const char* photon_settings, double region_tolerance) {
   const std::string scene = test::read_scene_file(file);
-  const std::string dir = std::string(CAUSTICA_SOURCE_DIR) + "/scenes";  // textures are found from there
+  // Files the scene names are found from its folder.
+  const std::string dir = (std::filesystem::path(CAUSTICA_SOURCE_DIR) / file).parent_path().string();
   const auto ref = render_text(scene, "path", "{}", path_spp, width, height, 3, 0, dir);
   const auto pm = render_text(scene, "photon", photon_settings, photon_spp, width, height, 4, 0, dir);
   const glm::dvec3 ref_mean = region_mean(ref.image, 0, 0, width, height);
@@ -78,6 +80,17 @@ TEST_CASE("photon: matches the path tracer on the Mitsuba metals under a texture
   // scenes/mitsuba/metals.xml (issue 24): named conductors from Mitsuba's table, and an area
   // light whose radiance is a checkerboard texture, which photons and shadow rays both follow.
   check_photon_against_path("scenes/mitsuba/metals.xml", 96, 54, 512, 32, R"({"photons": 50000, "caustic_photons": 50000})", 0.06);
+}
+
+TEST_CASE("photon: matches the path tracer on Mitsuba's principled BSDFs and a bump-mapped floor", "[trace][photon][reference]") {
+  // scenes/mitsuba/principled.xml (issue 24): principled with clear coat, anisotropic metal,
+  // rough glass and sheen; a principledthin leaf that transmits; a bumpmap floor.
+  check_photon_against_path("scenes/mitsuba/principled.xml", 96, 54, 512, 32, R"({"photons": 50000, "caustic_photons": 50000})", 0.06);
+}
+
+TEST_CASE("photon: matches the path tracer on Mitsuba 0.6's ward, coating and roughcoating", "[trace][photon][reference]") {
+  // scenes/mitsuba/layers.xml (issue 24), in Mitsuba 0.6's format.
+  check_photon_against_path("scenes/mitsuba/layers.xml", 96, 48, 512, 32, R"({"photons": 50000, "caustic_photons": 50000})", 0.06);
 }
 
 TEST_CASE("photon: caustic centre under a glass sphere matches the path tracer within 10 %", "[trace][photon][caustic]") {

@@ -19,9 +19,12 @@ enum BsdfFlags : uint32_t {
 };
 
 // What a BSDF may vary with over a surface: its texture coordinates (Mitsuba's convention:
-// (0, 0) at the image's top-left).
+// (0, 0) at the image's top-left), and how the surface moves with them (for bump mapping): dp/du
+// and dp/dv in the local shading frame, world units per unit of u and v (zero where the surface
+// has no texture coordinates).
 struct ShadingPoint {
   Vec2 uv{0.0f};
+  Vec3 dpdu{0.0f}, dpdv{0.0f};
 };
 
 struct BsdfSample {

@@ -23,17 +23,43 @@ float read_eta(const Params& p, float int_default) {
   return read_ior(p, "int_ior", int_default) / read_ior(p, "ext_ior", 1.000277f);
 }
 
-MicrofacetDistribution read_distribution(const Params& p) {
+MicrofacetType read_distribution_type(const Params& p) {
   MicrofacetType type = MicrofacetType::GGX;
   if (p.has("distribution")) {
     const std::string d = p.string("distribution", "");
     if (d == "beckmann") type = MicrofacetType::Beckmann;
     else if (d != "ggx") p.fail("distribution", "unknown distribution \"" + d + "\" (known: ggx, beckmann)");
   }
+  return type;
+}
+
+MicrofacetDistribution read_distribution(const Params& p) {
+  const MicrofacetType type = read_distribution_type(p);
   if (p.has("alpha") && (p.has("alpha_u") || p.has("alpha_v"))) p.fail("", "give either alpha or alpha_u and alpha_v");
   if (p.has("alpha_u") != p.has("alpha_v")) p.fail("", "alpha_u and alpha_v go together");
   const float a = float(p.number_in("alpha", 0.1, 0.0, 4.0));
   return MicrofacetDistribution(type, float(p.number_in("alpha_u", a, 0.0, 4.0)), float(p.number_in("alpha_v", a, 0.0, 4.0)));
+}
+
+Roughness read_roughness(const Params& p) {
+  bool textured = false;
+  for (const char* key : {"alpha", "alpha_u", "alpha_v"}) textured = textured || (p.has(key) && p.texture(key, Color(0.1f)).texture);
+  if (!textured) return read_distribution(p);
+  const MicrofacetType type = read_distribution_type(p);
+  if (p.has("alpha") && (p.has("alpha_u") || p.has("alpha_v"))) p.fail("", "give either alpha or alpha_u and alpha_v");
+  if (p.has("alpha_u") != p.has("alpha_v")) p.fail("", "alpha_u and alpha_v go together");
+  auto alpha = [&](const char* key) {
+    const ColorParam a = p.texture(key, Color(0.1f));
+    if (!a.texture && !(a.value.x <= 4.0f && a.value.y == a.value.x && a.value.z == a.value.x)) {
+      p.fail(key, std::string(key) + " must be one number from 0 to 4, or a texture");
+    }
+    return a;
+  };
+  if (p.has("alpha")) {
+    const ColorParam a = alpha("alpha");
+    return Roughness(type, a, a);
+  }
+  return Roughness(type, alpha("alpha_u"), alpha("alpha_v"));
 }
 
 ConductorIor read_conductor(const Params& p) {

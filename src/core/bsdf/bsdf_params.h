@@ -13,8 +13,12 @@ namespace caustica {
 float read_ior(const Params& p, const std::string& key, float fallback);
 // int_ior / ext_ior: the relative index of the interior.
 float read_eta(const Params& p, float int_default);
-// distribution (ggx, beckmann) with alpha, or alpha_u and alpha_v.
+// distribution (ggx, beckmann; default ggx).
+MicrofacetType read_distribution_type(const Params& p);
+// distribution with alpha, or alpha_u and alpha_v, numbers.
 MicrofacetDistribution read_distribution(const Params& p);
+// The same, each alpha a number or a texture.
+Roughness read_roughness(const Params& p);
 // material (a named conductor) or eta and k; default Mitsuba's "none", a perfect mirror.
 ConductorIor read_conductor(const Params& p);
 // Mitsuba's specular_reflectance and specular_transmittance of a dielectric: colours or

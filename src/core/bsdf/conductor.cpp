@@ -29,32 +29,34 @@ Color RoughConductor::eval(const Vec3& wo_in, const Vec3& wi_in, const ShadingPo
   if (wo_in.z * wi_in.z <= 0.0f) return Color(0.0f);
   const Vec3 wo = wo_in.z < 0 ? flip_z(wo_in) : wo_in, wi = wo_in.z < 0 ? flip_z(wi_in) : wi_in;
   const Vec3 h = glm::normalize(wo + wi);
-  const float d = dist_.D(h);
+  const MicrofacetDistribution dist = rough_.at(sp.uv);
+  const float d = dist.D(h);
   if (d <= 0.0f) return Color(0.0f);
-  return specular_.at(sp.uv) * ior_.reflectance(glm::dot(wo, h)) * (d * dist_.G(wo, wi) / (4.0f * wo.z * wi.z));
+  return specular_.at(sp.uv) * ior_.reflectance(glm::dot(wo, h)) * (d * dist.G(wo, wi) / (4.0f * wo.z * wi.z));
 }
 
-float RoughConductor::pdf(const Vec3& wo_in, const Vec3& wi_in, const ShadingPoint&) const {
+float RoughConductor::pdf(const Vec3& wo_in, const Vec3& wi_in, const ShadingPoint& sp) const {
   if (wo_in.z * wi_in.z <= 0.0f) return 0.0f;
   const Vec3 wo = wo_in.z < 0 ? flip_z(wo_in) : wo_in, wi = wo_in.z < 0 ? flip_z(wi_in) : wi_in;
   const Vec3 h = glm::normalize(wo + wi);
   const float woh = glm::dot(wo, h);
-  return woh > 0.0f ? dist_.pdf(wo, h) / (4.0f * woh) : 0.0f;
+  return woh > 0.0f ? rough_.at(sp.uv).pdf(wo, h) / (4.0f * woh) : 0.0f;
 }
 
 bool RoughConductor::sample(const Vec3& wo_in, const Vec2& u, float, BsdfSample& s, const ShadingPoint& sp) const {
   if (wo_in.z == 0.0f) return false;
   const bool below = wo_in.z < 0;
   const Vec3 wo = below ? flip_z(wo_in) : wo_in;
-  const Vec3 m = dist_.sample_visible(wo, u);
+  const MicrofacetDistribution dist = rough_.at(sp.uv);
+  const Vec3 m = dist.sample_visible(wo, u);
   const float wom = glm::dot(wo, m);
   if (wom <= 0.0f) return false;
   const Vec3 wi = reflect(wo, m);
   if (wi.z <= 0.0f) return false;
-  s.pdf = dist_.pdf(wo, m) / (4.0f * wom);
+  s.pdf = dist.pdf(wo, m) / (4.0f * wom);
   if (!(s.pdf > 0.0f)) return false;
   // f cos / pdf = F D G / (4 cos_o) / (G1(wo) D / (4 cos_o)) = F G / G1(wo).
-  s.weight = specular_.at(sp.uv) * ior_.reflectance(wom) * (dist_.G(wo, wi) / dist_.G1(wo));
+  s.weight = specular_.at(sp.uv) * ior_.reflectance(wom) * (dist.G(wo, wi) / dist.G1(wo));
   s.wi = below ? flip_z(wi) : wi;
   s.delta = false;
   s.lobe = kBsdfGlossy | kBsdfReflection;
@@ -70,7 +72,7 @@ std::unique_ptr<Bsdf> Conductor::create_mirror(const Params& p) {
 }
 
 std::unique_ptr<Bsdf> RoughConductor::create(const Params& p) {
-  return std::make_unique<RoughConductor>(read_distribution(p), read_conductor(p), p.texture("specular_reflectance", Color(1.0f)));
+  return std::make_unique<RoughConductor>(read_roughness(p), read_conductor(p), p.texture("specular_reflectance", Color(1.0f)));
 }
 
 }  // namespace caustica

@@ -36,19 +36,19 @@ class Conductor final : public SpecularBsdf {
 class RoughConductor final : public Bsdf {
  public:
   static std::unique_ptr<Bsdf> create(const Params& p);
-  RoughConductor(const MicrofacetDistribution& dist, const ConductorIor& ior, const ColorParam& specular_reflectance)
-      : dist_(dist), ior_(ior), specular_(specular_reflectance) {}
+  RoughConductor(const Roughness& rough, const ConductorIor& ior, const ColorParam& specular_reflectance)
+      : rough_(rough), ior_(ior), specular_(specular_reflectance) {}
   Color eval(const Vec3& wo, const Vec3& wi, const ShadingPoint& sp = {}) const override;
   float pdf(const Vec3& wo, const Vec3& wi, const ShadingPoint& sp = {}) const override;
   bool sample(const Vec3& wo, const Vec2& u, float u_lobe, BsdfSample& s, const ShadingPoint& sp = {}) const override;
   int specular_lobes(const Vec3& wo, BsdfSample* out, const ShadingPoint& sp = {}) const override;  // the smooth limit
   uint32_t flags() const override { return kBsdfGlossy | kBsdfReflection; }
-  float glossy_roughness() const override { return std::min(dist_.alpha_u(), dist_.alpha_v()); }
+  float glossy_roughness() const override { return rough_.narrowest(); }
   Color albedo(const ShadingPoint& sp = {}) const override { return specular_.at(sp.uv) * ior_.reflectance(1.0f); }
 
  private:
   Conductor smooth() const { return Conductor(ior_, specular_); }
-  MicrofacetDistribution dist_;
+  Roughness rough_;
   ConductorIor ior_;
   ColorParam specular_;
 };

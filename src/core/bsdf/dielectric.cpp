@@ -75,19 +75,20 @@ Color RoughDielectric::eval(const Vec3& wo, const Vec3& wi, const ShadingPoint& 
   float etap;
   if (!half_vector(wo, wi, wm, etap)) return Color(0.0f);
   const float F = fresnel_dielectric(std::abs(glm::dot(wo, wm)), wo.z > 0.0f ? eta_ : 1.0f / eta_);
-  const float dg = dist_.D(wm) * dist_.G(wo, wi);
+  const MicrofacetDistribution dist = rough_.at(sp.uv);
+  const float dg = dist.D(wm) * dist.G(wo, wi);
   if (wo.z * wi.z > 0.0f) return Color(F * dg / std::abs(4.0f * wo.z * wi.z)) * tint_.reflect.at(sp.uv);
   const float denom = glm::dot(wi, wm) + glm::dot(wo, wm) / etap;
   const float ft = (1.0f - F) * dg * std::abs(glm::dot(wi, wm) * glm::dot(wo, wm) / (denom * denom * wi.z * wo.z));
   return Color(ft) * tint_.transmit.at(sp.uv);
 }
 
-float RoughDielectric::pdf(const Vec3& wo, const Vec3& wi, const ShadingPoint&) const {
+float RoughDielectric::pdf(const Vec3& wo, const Vec3& wi, const ShadingPoint& sp) const {
   Vec3 wm;
   float etap;
   if (!half_vector(wo, wi, wm, etap)) return 0.0f;
   const float F = fresnel_dielectric(std::abs(glm::dot(wo, wm)), wo.z > 0.0f ? eta_ : 1.0f / eta_);
-  const float pm = dist_.pdf(wo, wm);
+  const float pm = rough_.at(sp.uv).pdf(wo, wm);
   if (wo.z * wi.z > 0.0f) return pm / (4.0f * std::abs(glm::dot(wo, wm))) * F;
   const float denom = glm::dot(wi, wm) + glm::dot(wo, wm) / etap;
   return pm * std::abs(glm::dot(wi, wm)) / (denom * denom) * (1.0f - F);
@@ -95,7 +96,7 @@ float RoughDielectric::pdf(const Vec3& wo, const Vec3& wi, const ShadingPoint&) 
 
 bool RoughDielectric::sample(const Vec3& wo, const Vec2& u, float u_lobe, BsdfSample& s, const ShadingPoint& sp) const {
   if (wo.z == 0.0f) return false;
-  const Vec3 wm = dist_.sample_visible(wo, u);
+  const Vec3 wm = rough_.at(sp.uv).sample_visible(wo, u);
   const float cos_om = glm::dot(wo, wm);
   const float F = fresnel_dielectric(std::abs(cos_om), wo.z > 0.0f ? eta_ : 1.0f / eta_);
   if (u_lobe < F) {
@@ -108,7 +109,7 @@ bool RoughDielectric::sample(const Vec3& wo, const Vec2& u, float u_lobe, BsdfSa
     if (!refract(wo, n, wo.z > 0.0f ? eta_ : 1.0f / eta_, s.wi) || s.wi.z * wo.z >= 0.0f) return false;
     s.lobe = kBsdfGlossy | kBsdfTransmission;
   }
-  s.pdf = pdf(wo, s.wi);
+  s.pdf = pdf(wo, s.wi, sp);
   if (!(s.pdf > 0.0f)) return false;
   s.weight = eval(wo, s.wi, sp) * (std::abs(s.wi.z) / s.pdf);
   s.delta = false;
@@ -137,9 +138,9 @@ std::unique_ptr<Bsdf> ThinDielectric::create(const Params& p) {
 }
 
 std::unique_ptr<Bsdf> RoughDielectric::create(const Params& p) {
-  const MicrofacetDistribution dist = read_distribution(p);
+  const Roughness rough = read_roughness(p);
   const float eta = read_eta(p, 1.5046f);
-  return std::make_unique<RoughDielectric>(dist, eta, read_dielectric_tint(p));
+  return std::make_unique<RoughDielectric>(rough, eta, read_dielectric_tint(p));
 }
 
 }  // namespace caustica

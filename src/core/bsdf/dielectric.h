@@ -58,8 +58,8 @@ class ThinDielectric final : public SpecularBsdf {
 class RoughDielectric final : public Bsdf {
  public:
   static std::unique_ptr<Bsdf> create(const Params& p);
-  RoughDielectric(const MicrofacetDistribution& dist, float eta, const DielectricTint& tint = {})
-      : dist_(dist), eta_(eta), tint_(tint) {}
+  RoughDielectric(const Roughness& rough, float eta, const DielectricTint& tint = {})
+      : rough_(rough), eta_(eta), tint_(tint) {}
   Color eval(const Vec3& wo, const Vec3& wi, const ShadingPoint& sp = {}) const override;
   float pdf(const Vec3& wo, const Vec3& wi, const ShadingPoint& sp = {}) const override;
   bool sample(const Vec3& wo, const Vec2& u, float u_lobe, BsdfSample& s, const ShadingPoint& sp = {}) const override;
@@ -67,14 +67,14 @@ class RoughDielectric final : public Bsdf {
     return Dielectric(eta_, FresnelModel::Exact, tint_).specular_lobes(wo, out, sp);
   }
   uint32_t flags() const override { return kBsdfGlossy | kBsdfReflection | kBsdfTransmission; }
-  float glossy_roughness() const override { return std::min(dist_.alpha_u(), dist_.alpha_v()); }
+  float glossy_roughness() const override { return rough_.narrowest(); }
   Color albedo(const ShadingPoint& sp = {}) const override { return tint_.albedo(sp.uv); }
 
  private:
   // The half vector of (wo, wi), facing +z, and the relative index across it; false when the
   // pair cannot be connected by a microfacet.
   bool half_vector(const Vec3& wo, const Vec3& wi, Vec3& wm, float& etap) const;
-  MicrofacetDistribution dist_;
+  Roughness rough_;
   float eta_;
   DielectricTint tint_;
 };

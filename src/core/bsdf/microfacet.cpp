@@ -1,5 +1,7 @@
 // GGX (Trowbridge-Reitz; Walter et al. 2007) and Beckmann microfacet distributions.
 #include "core/bsdf/microfacet.h"
+#include "core/bsdf/bsdf.h"
+#include "core/bsdf/fresnel.h"
 
 namespace caustica {
 namespace {
@@ -107,6 +109,47 @@ Vec3 MicrofacetDistribution::sample_visible(const Vec3& wo_in, const Vec2& u) co
   const float sx = (cos_p * s.x - sin_p * s.y) * ax_;
   const float sy = (sin_p * s.x + cos_p * s.y) * ay_;
   return glm::normalize(Vec3(-sx, -sy, 1.0f));
+}
+
+// A rough boundary's directional reflectance and transmittance (fractions of energy, single
+// scattering: their sum falls below 1 as the surface gets rougher) for light arriving at cos
+// theta from the side where the relative index is eta; stratified visible normals, m x m. From
+// inside (eta < 1), where total internal reflection makes the rare steep microfacets matter,
+// 96 x 96: with 32 x 32, GGX's R at normal incidence was 20 % high.
+std::pair<double, double> rough_boundary(const MicrofacetDistribution& dist, float cos_theta, float eta) {
+  const int m = eta < 1.0f ? 96 : 32;
+  const float c = std::max(1e-3f, cos_theta);
+  const Vec3 wo(std::sqrt(1.0f - c * c), 0.0f, c);
+  double r = 0, t = 0;
+  for (int i = 0; i < m; ++i) {
+    for (int j = 0; j < m; ++j) {
+      const Vec3 h = dist.sample_visible(wo, Vec2((i + 0.5f) / m, (j + 0.5f) / m));
+      const float woh = glm::dot(wo, h);
+      if (woh <= 0.0f) continue;
+      const float f = fresnel_dielectric(woh, eta);
+      const Vec3 wr = reflect(wo, h);
+      // Visible normals from wo; the way out is masked by Smith's G1, as Mitsuba's
+      // eval_reflectance and eval_transmittance weigh it.
+      if (wr.z > 0.0f) r += double(f) * double(dist.G1(wr));
+      Vec3 wt;
+      if (f < 1.0f && refract(wo, h, eta, wt) && wt.z < 0.0f) t += double(1.0f - f) * double(dist.G1(wt));
+    }
+  }
+  return {r / (m * m), t / (m * m)};
+}
+
+Roughness::Roughness(MicrofacetType type, const ColorParam& alpha_u, const ColorParam& alpha_v)
+    : fixed_(type, clamp_alpha(alpha_u.value.x), clamp_alpha(alpha_v.value.x)),
+      alpha_u_(alpha_u),
+      alpha_v_(alpha_v),
+      textured_(alpha_u.texture || alpha_v.texture) {}
+
+MicrofacetDistribution Roughness::at(const Vec2& uv) const {
+  if (!textured_) return fixed_;
+  auto alpha = [&](const ColorParam& a) {
+    return clamp_alpha(a.texture ? luminance(a.texture->eval(uv)) : a.value.x);
+  };
+  return MicrofacetDistribution(fixed_.type(), alpha(alpha_u_), alpha(alpha_v_));
 }
 
 }  // namespace caustica

@@ -9,8 +9,6 @@
 
 namespace caustica {
 namespace {
-constexpr int kAlbedoTable = 64;
-
 // Diffuse reflectance of a boundary for light from the side where the relative index is eta:
 // the cosine-weighted hemispherical average of Fresnel, 2 int F(cos) cos d(cos).
 float diffuse_fresnel(float eta) {
@@ -23,32 +21,6 @@ float diffuse_fresnel(float eta) {
   return float(sum);
 }
 
-// A rough boundary's directional reflectance and transmittance (fractions of energy, single
-// scattering: their sum falls below 1 as the surface gets rougher) for light arriving at cos
-// theta from the side where the relative index is eta; stratified visible normals, m x m. From
-// inside (eta < 1), where total internal reflection makes the rare steep microfacets matter,
-// 96 x 96: with 32 x 32, GGX's R at normal incidence was 20 % high.
-std::pair<double, double> rough_boundary(const MicrofacetDistribution& dist, float cos_theta, float eta) {
-  const int m = eta < 1.0f ? 96 : 32;
-  const float c = std::max(1e-3f, cos_theta);
-  const Vec3 wo(std::sqrt(1.0f - c * c), 0.0f, c);
-  double r = 0, t = 0;
-  for (int i = 0; i < m; ++i) {
-    for (int j = 0; j < m; ++j) {
-      const Vec3 h = dist.sample_visible(wo, Vec2((i + 0.5f) / m, (j + 0.5f) / m));
-      const float woh = glm::dot(wo, h);
-      if (woh <= 0.0f) continue;
-      const float f = fresnel_dielectric(woh, eta);
-      const Vec3 wr = reflect(wo, h);
-      // Visible normals from wo; the way out is masked by Smith's G1, as Mitsuba's
-      // eval_reflectance and eval_transmittance weigh it.
-      if (wr.z > 0.0f) r += double(f) * double(dist.G1(wr));
-      Vec3 wt;
-      if (f < 1.0f && refract(wo, h, eta, wt) && wt.z < 0.0f) t += double(1.0f - f) * double(dist.G1(wt));
-    }
-  }
-  return {r / (m * m), t / (m * m)};
-}
 }  // namespace
 
 Plastic::Plastic(const ColorParam& diffuse, const ColorParam& specular, float eta, bool nonlinear,
@@ -69,12 +41,12 @@ Plastic::Plastic(const ColorParam& diffuse, const ColorParam& specular, float et
   }
   // The rough coat from outside: its directional albedo E(cos) (the integral of
   // F D G / (4 cos_o) over wi) and transmittance T(cos), tabulated over cos (deterministic).
-  rough_albedo_.resize(kAlbedoTable + 1);
-  rough_transmittance_.resize(kAlbedoTable + 1);
-  tbb::parallel_for(0, kAlbedoTable + 1, [&](int k) {
-    const auto [r, t] = rough_boundary(*dist_, float(k) / kAlbedoTable, eta_);
-    rough_albedo_[size_t(k)] = float(r);
-    rough_transmittance_[size_t(k)] = float(t);
+  rough_albedo_.v.resize(CosineTable::kSize + 1);
+  rough_transmittance_.v.resize(CosineTable::kSize + 1);
+  tbb::parallel_for(0, CosineTable::kSize + 1, [&](int k) {
+    const auto [r, t] = rough_boundary(*dist_, float(k) / CosineTable::kSize, eta_);
+    rough_albedo_.v[size_t(k)] = float(r);
+    rough_transmittance_.v[size_t(k)] = float(t);
   });
   // And from inside, as Mitsuba's roughplastic: the rough coat's own diffuse internal
   // reflectance, 2 integral of its reflectance (total internal reflection included) cos.
@@ -96,18 +68,10 @@ uint32_t Plastic::flags() const {
   return f;
 }
 
-namespace {
-float lookup(const std::vector<float>& table, float cos_theta) {
-  const float x = std::clamp(cos_theta, 0.0f, 1.0f) * kAlbedoTable;
-  const int i = std::min(int(x), kAlbedoTable - 1);
-  const float t = x - float(i);
-  return (1.0f - t) * table[size_t(i)] + t * table[size_t(i) + 1];
-}
-}  // namespace
 
 float Plastic::coat_reflectance(float cos_theta) const {
   if (!dist_) return fresnel_dielectric(std::clamp(cos_theta, 0.0f, 1.0f), eta_);
-  return lookup(rough_albedo_, cos_theta);
+  return rough_albedo_(cos_theta);
 }
 
 float Plastic::specular_probability(float cos_o, const ShadingPoint& sp) const {
@@ -124,7 +88,7 @@ Color Plastic::diffuse_eval(const Vec3& wo, const Vec3& wi, const ShadingPoint& 
     // times the rough coat's transmittance on the way in and out, with the rough coat's own
     // F_dr_int. Not lossless: the single-scattering coat loses energy as it gets rougher.
     const Color denom = Color(1.0f) - (nonlinear_ ? rho * fdr_internal_ : Color(fdr_internal_));
-    const float t = lookup(rough_transmittance_, wi.z) * lookup(rough_transmittance_, wo.z);
+    const float t = rough_transmittance_(wi.z) * rough_transmittance_(wo.z);
     return rho / denom * (t * kInvPi / (eta_ * eta_));
   }
   // rho / (pi (1 - F_dr_ext)) is Mitsuba's rho / (pi eta^2 (1 - F_dr_int)) for a smooth coat.

@@ -50,8 +50,8 @@ class Plastic final : public Bsdf {
   std::optional<MicrofacetDistribution> dist_;
   float fdr_internal_ = 0;            // diffuse reflectance of the coat from inside
   float fdr_external_ = 0;            // and from outside (the smooth coat's only)
-  std::vector<float> rough_albedo_;        // the rough coat's directional albedo over cos theta
-  std::vector<float> rough_transmittance_;  // and its directional transmittance
+  CosineTable rough_albedo_;         // the rough coat's directional albedo over cos theta
+  CosineTable rough_transmittance_;  // and its directional transmittance
 };
 
 }  // namespace caustica

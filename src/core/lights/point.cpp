@@ -18,10 +18,11 @@ bool PointLight::sample_li(const Vec3& x, const Vec2&, LightSample& s) const {
 }
 
 EmittedPhoton PointLight::sample_emission(const Vec2&, const Vec2& u_dir) const {
-  if (!spot_) return {position_, Vec3(0.0f), sample_uniform_sphere(u_dir), power()};
-  // Uniform within the cutoff cone: flux = I falloff / pdf.
-  const Vec3 dir = spot_->frame().to_world(sample_uniform_cone(u_dir, spot_->cos_cutoff()));
-  return {position_, Vec3(0.0f), dir, intensity_ * (falloff(dir) / uniform_cone_pdf(spot_->cos_cutoff()))};
+  if (!profile_) return {position_, Vec3(0.0f), sample_uniform_sphere(u_dir), power()};
+  // Within the profile: flux = I profile / pdf.
+  float pdf = 0.0f;
+  const Vec3 dir = profile_->sample(u_dir, pdf);
+  return {position_, Vec3(0.0f), dir, pdf > 0.0f ? intensity_ * falloff(dir) / pdf : Color(0.0f)};
 }
 
 Bounds PointLight::bounds() const {

@@ -18,4 +18,13 @@ inline Vec3 read_direction(const Params& p, const std::string& key) {
   return glm::normalize(d);
 }
 
+// Where a light at `position` points: `direction`, or `target` minus the position (one of the two).
+inline Vec3 read_aim(const Params& p, const Vec3& position) {
+  if (p.has("target") == p.has("direction")) p.fail("", "give either direction or target");
+  if (!p.has("target")) return read_direction(p, "direction");
+  const Vec3 dir = p.point("target") - position;
+  if (!(glm::length(dir) > 0.0f)) p.fail("target", "target equals position");
+  return dir;
+}
+
 }  // namespace caustica

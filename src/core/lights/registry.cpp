@@ -3,6 +3,7 @@
 #include "core/lights/directional.h"
 #include "core/lights/environment.h"
 #include "core/lights/point.h"
+#include "core/lights/projector.h"
 #include "core/lights/spot.h"
 
 namespace caustica {
@@ -10,7 +11,10 @@ namespace caustica {
 const std::vector<LightPlugin>& light_plugins() {
   static const std::vector<LightPlugin> table = {
       {"point", true, PointLight::create, {"position", "intensity"}},
-      {"spot", true, create_spot_light, {"position", "direction", "target", "intensity", "cutoff_angle", "beam_width"}},
+      {"spot", true, create_spot_light,
+       {"position", "direction", "target", "up", "intensity", "cutoff_angle", "beam_width", "texture"}},
+      {"projector", true, create_projector_light,
+       {"position", "direction", "target", "up", "irradiance", "scale", "fov", "fov_axis"}},
       {"directional", true, DirectionalLight::create, {"direction", "irradiance"}},
       {"constant", true, EnvironmentLight::create_constant, {"radiance"}},
       {"envmap", true, EnvironmentLight::create, {"filename", "scale", "to_world"}},

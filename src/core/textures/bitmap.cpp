@@ -51,6 +51,11 @@ void check_texels(const std::string& path, const OIIO::ImageSpec& spec) {
 float srgb_to_linear(float c) {
   return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
 }
+
+// d srgb_to_linear / dc.
+float srgb_to_linear_slope(float c) {
+  return c <= 0.04045f ? 1.0f / 12.92f : 2.4f / 1.055f * std::pow((c + 0.055f) / 1.055f, 1.4f);
+}
 }  // namespace
 
 BitmapTexture::BitmapTexture(const std::string& path, TextureFilter filter, TextureWrap wrap, const UvTransform& to_uv,
@@ -77,25 +82,49 @@ BitmapTexture::BitmapTexture(const std::string& path, TextureFilter filter, Text
   handle_ = ts->get_texture_handle(name);
 }
 
-Color BitmapTexture::eval(const Vec2& uv_in) const {
-  const Vec2 uv = to_uv_.apply(uv_in);
+bool BitmapTexture::lookup(const Vec2& st, TextureFilter filter, Color& c, Color* ds, Color* dt) const {
   OIIO::TextureOpt opt;
-  opt.interpmode = filter_ == TextureFilter::Nearest ? OIIO::TextureOpt::InterpClosest : OIIO::TextureOpt::InterpBilinear;
+  opt.interpmode = filter == TextureFilter::Nearest ? OIIO::TextureOpt::InterpClosest : OIIO::TextureOpt::InterpBilinear;
   opt.mipmode = OIIO::TextureOpt::MipModeNoMIP;
   const OIIO::TextureOpt::Wrap w = wrap_ == TextureWrap::Repeat  ? OIIO::TextureOpt::WrapPeriodic
                                    : wrap_ == TextureWrap::Mirror ? OIIO::TextureOpt::WrapMirror
                                                                   : OIIO::TextureOpt::WrapClamp;
   opt.swrap = opt.twrap = w;
-  float rgb[3] = {0, 0, 0};
+  float v[3] = {0, 0, 0}, vs[3] = {0, 0, 0}, vt[3] = {0, 0, 0};
   const int n = std::min(channels_, 3);
   OIIO::TextureSystem* ts = texture_system();
-  if (!ts->texture(static_cast<OIIO::TextureSystem::TextureHandle*>(handle_), nullptr, opt, uv.x, uv.y, 0, 0, 0, 0, n, rgb)) {
-    return Color(0.0f);
+  if (!ts->texture(static_cast<OIIO::TextureSystem::TextureHandle*>(handle_), nullptr, opt, st.x, st.y, 0, 0, 0, 0, n, v,
+                   ds ? vs : nullptr, ds ? vt : nullptr)) {
+    return false;
   }
-  if (n == 1) rgb[1] = rgb[2] = rgb[0];
-  Color c(rgb[0], rgb[1], rgb[2]);
-  if (srgb_) c = Color(srgb_to_linear(c.x), srgb_to_linear(c.y), srgb_to_linear(c.z));
-  return c;
+  if (n == 1) v[1] = v[2] = v[0], vs[1] = vs[2] = vs[0], vt[1] = vt[2] = vt[0];
+  for (int i = 0; i < 3; ++i) {
+    // Through the sRGB decoding by the chain rule.
+    const float slope = srgb_ ? srgb_to_linear_slope(v[i]) : 1.0f;
+    if (srgb_) v[i] = srgb_to_linear(v[i]);
+    vs[i] *= slope;
+    vt[i] *= slope;
+  }
+  c = Color(v[0], v[1], v[2]);
+  if (ds) *ds = Color(vs[0], vs[1], vs[2]);
+  if (dt) *dt = Color(vt[0], vt[1], vt[2]);
+  return true;
+}
+
+Color BitmapTexture::eval(const Vec2& uv) const {
+  Color c(0.0f);
+  return lookup(to_uv_.apply(uv), filter_, c, nullptr, nullptr) ? c : Color(0.0f);
+}
+
+bool BitmapTexture::gradient(const Vec2& uv, Vec2& grad) const {
+  grad = Vec2(0.0f);
+  if (filter_ == TextureFilter::Nearest) return true;
+  Color c(0.0f), ds(0.0f), dt(0.0f);
+  if (!lookup(to_uv_.apply(uv), filter_, c, &ds, &dt)) return true;
+  const float gs = luminance(ds), gt = luminance(dt);
+  // s = m00 u + m01 v + tx, t = m10 u + m11 v + ty.
+  grad = Vec2(to_uv_.m00 * gs + to_uv_.m10 * gt, to_uv_.m01 * gs + to_uv_.m11 * gt);
+  return true;
 }
 
 std::unique_ptr<Texture> BitmapTexture::create(const Params& p) {

@@ -20,10 +20,16 @@ class BitmapTexture final : public Texture {
   static std::unique_ptr<Texture> create(const Params& p);
   Color eval(const Vec2& uv) const override;
   int channels() const override { return channels_; }
+  // The exact derivative of the bilinear lookup (Mitsuba's eval_1_grad), through to_uv; zero
+  // for nearest lookups, which are constant between texels.
+  bool gradient(const Vec2& uv, Vec2& grad) const override;
   int width() const { return width_; }
   int height() const { return height_; }
 
  private:
+  // The linear colour at uv (through to_uv), and with ds and dt its derivatives along the
+  // image's s and t axes; false when OpenImageIO fails.
+  bool lookup(const Vec2& st, TextureFilter filter, Color& c, Color* ds, Color* dt) const;
   std::string path_;
   void* handle_ = nullptr;  // OIIO::TextureSystem::TextureHandle
   TextureFilter filter_;

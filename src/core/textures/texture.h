@@ -18,6 +18,9 @@ class Texture {
   virtual Color eval(const Vec2& uv) const = 0;
   // The colour channels the texture holds (a grey image: 1).
   virtual int channels() const { return 3; }
+  // The gradient of the texture's scalar value (a colour's luminance, as Mitsuba's eval_1) with
+  // respect to u and v, for bump mapping; false for a texture that has none to give.
+  virtual bool gradient(const Vec2& /*uv*/, Vec2& /*grad*/) const { return false; }
 };
 
 // A colour parameter of a BSDF: a constant, or a texture owned by the scene.

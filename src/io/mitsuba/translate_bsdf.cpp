@@ -14,6 +14,11 @@ const std::set<std::string>& mitsuba_bsdfs() {
   return names;
 }
 
+// Wrappers of exactly one nested BSDF.
+bool takes_one_nested(const std::string& type) {
+  return type == "mask" || type == "normalmap" || type == "bumpmap" || type == "coating" || type == "roughcoating";
+}
+
 const std::set<std::string>& mitsuba_textures() {
   static const std::set<std::string> names = mitsuba_names(texture_plugins());
   return names;
@@ -96,16 +101,20 @@ json Translator::bsdf(const XmlObject& o, const std::string& p) {
     note(p + "/" + name, prop.where);
   }
   // Mitsuba's rough plugins default to Beckmann (ours, in JSON scenes, to GGX).
-  if ((o.type == "roughconductor" || o.type == "roughdielectric" || o.type == "roughplastic") && !j.contains("distribution")) {
+  if ((o.type == "roughconductor" || o.type == "roughdielectric" || o.type == "roughplastic" || o.type == "roughcoating") &&
+      !j.contains("distribution")) {
     j["distribution"] = "beckmann";
   }
   json nested = json::array();
   for (const XmlChild& c : o.children) {
     const XmlObject& k = *c.object;
     if (k.tag == "texture") {
-      if (c.name.empty()) throw InputError(c.where + ": a texture inside a BSDF needs a name (the parameter it sets)");
-      j[c.name] = texture(k, p + "/" + c.name);
-      note(p + "/" + c.name, c.where);
+      // A bump map's height texture is its one unnamed texture.
+      const std::string name = c.name.empty() && o.type == "bumpmap" ? "height" : c.name;
+      if (name.empty()) throw InputError(c.where + ": a texture inside a BSDF needs a name (the parameter it sets)");
+      if (j.contains(name)) throw InputError(c.where + ": \"" + name + "\" is given twice");
+      j[name] = texture(k, p + "/" + name);
+      note(p + "/" + name, c.where);
     } else if (k.tag == "bsdf") {
       nested.push_back(bsdf(k, p + "/bsdf/" + std::to_string(nested.size())));
     } else {
@@ -117,7 +126,7 @@ json Translator::bsdf(const XmlObject& o, const std::string& p) {
       // One BSDF: the pointers recorded under /bsdf/0 name it as /bsdf.
       if (nested.size() == 1) copy_sources(p + "/bsdf/0", p + "/bsdf");
       j["bsdf"] = nested.size() == 1 ? nested[0] : nested;
-    } else if ((o.type == "mask" || o.type == "normalmap") && nested.size() == 1) {
+    } else if (takes_one_nested(o.type) && nested.size() == 1) {
       copy_sources(p + "/bsdf/0", p + "/bsdf");
       j["bsdf"] = nested[0];
     } else if (o.type == "blendbsdf" && nested.size() == 2) {
@@ -125,7 +134,7 @@ json Translator::bsdf(const XmlObject& o, const std::string& p) {
     } else {
       throw InputError(o.where + ": <bsdf type=\"" + o.type + "\"> takes " +
                        (o.type == "twosided"    ? "one or two nested BSDFs"
-                        : o.type == "mask" || o.type == "normalmap" ? "one nested BSDF"
+                        : takes_one_nested(o.type) ? "one nested BSDF"
                         : o.type == "blendbsdf" ? "two nested BSDFs"
                                                 : "no nested BSDF"));
     }

@@ -46,14 +46,35 @@ void Translator::emitter(const XmlObject& o) {
     if (!(glm::length(d) > 0.0)) throw InputError(where + ": the direction is zero");
     return vec(glm::normalize(d));
   };
+  if (o.type == "spot" || o.type == "projector") {
+    l["position"] = vec(glm::dvec3(m[3]));
+    l["direction"] = direction(glm::dvec3(m * glm::dvec4(0, 0, 1, 0)), tw ? tw->where : o.where);
+    // The frame's up orients a texture or an image; a mirroring to_world is not kept.
+    l["up"] = direction(glm::dvec3(m * glm::dvec4(0, 1, 0, 0)), tw ? tw->where : o.where);
+  }
   if (o.type == "point") {
     const XmlProperty* pos = props.get("position");
     if (pos && tw) throw InputError(pos->where + ": give position or to_world, not both");
     l["position"] = vec(pos ? point(*pos) : glm::dvec3(m[3]));
     emitted("intensity", "intensity");
+  } else if (o.type == "projector") {
+    if (const XmlProperty* e = props.get("irradiance")) {
+      l["irradiance"] = color_json(*e, SpectrumUse::Emission);
+      note(p + "/irradiance", e->where);
+    }
+    for (const char* key : {"scale", "fov"}) {
+      if (const XmlProperty* v = props.get(key)) {
+        l[key] = number(*v);
+        note(p + "/" + key, v->where);
+      }
+    }
+    if (const XmlProperty* a = props.get("fov_axis")) l["fov_axis"] = string(*a);
+    if (const XmlProperty* fl = props.get("focal_length")) {
+      if (props.get("fov")) throw InputError(fl->where + ": give fov or focal_length, not both");
+      l["fov"] = focal_length_fov(*fl);
+      l["fov_axis"] = "diagonal";
+    }
   } else if (o.type == "spot") {
-    l["position"] = vec(glm::dvec3(m[3]));
-    l["direction"] = direction(glm::dvec3(m * glm::dvec4(0, 0, 1, 0)), tw ? tw->where : o.where);
     emitted("intensity", "intensity");
     const XmlProperty* cut = props.get("cutoff_angle");
     const XmlProperty* beam = props.get("beam_width");
@@ -87,7 +108,7 @@ void Translator::emitter(const XmlObject& o) {
       note(p + "/to_world", tw->where);
     }
   }
-  if (o.type != "spot" && o.type != "point" && o.type != "directional" && o.type != "envmap" && tw) {
+  if (o.type != "spot" && o.type != "projector" && o.type != "point" && o.type != "directional" && o.type != "envmap" && tw) {
     throw InputError(tw->where + ": a " + o.type + " emitter has no to_world");
   }
   if (const XmlProperty* w = props.get("sampling_weight")) {
@@ -95,7 +116,13 @@ void Translator::emitter(const XmlObject& o) {
     note(p + "/sampling_weight", w->where);
   }
   refuse_unused(o, props);
-  for (const XmlChild& c : o.children) bad_child(o, c);
+  // The spot's texture and the projector's image.
+  const std::string texture_key = o.type == "spot" ? "texture" : o.type == "projector" ? "irradiance" : "";
+  for (const XmlChild& c : o.children) {
+    if (texture_key.empty() || c.object->tag != "texture" || c.name != texture_key) bad_child(o, c);
+    l[texture_key] = texture(*c.object, p + "/" + texture_key);
+    note(p + "/" + texture_key, c.where);
+  }
   lights.push_back(l);
 }
 

@@ -13,6 +13,15 @@ const std::set<std::string> kIntegrators = {"path", "volpath", "volpathmis", "di
                                             "sppm", "ppm",  "moment",  "aov"};
 }  // namespace
 
+double Translator::focal_length_fov(const XmlProperty& fl) {
+  std::string s = fl.kind == XmlProperty::String ? fl.text : std::to_string(number(fl));
+  if (s.size() > 2 && s.substr(s.size() - 2) == "mm") s.resize(s.size() - 2);
+  char* end = nullptr;
+  const double mm = std::strtod(s.c_str(), &end);
+  if (end != s.c_str() + s.size() || !(mm > 0.0) || !std::isfinite(mm)) throw InputError(fl.where + ": expected a focal length like \"50mm\"");
+  return 2.0 * std::atan(std::sqrt(36.0 * 36.0 + 24.0 * 24.0) / (2.0 * mm)) * 180.0 / 3.14159265358979323846;
+}
+
 void Translator::sensor(const XmlObject& o) {
   json& doc = out_.doc;
   if (o.type != "perspective" && o.type != "thinlens" && o.type != "orthographic") {
@@ -60,15 +69,11 @@ void Translator::sensor(const XmlObject& o) {
     fov = number(*f);
     if (props.get("focal_length")) throw InputError(f->where + ": give fov or focal_length, not both");
   } else {
-    double mm = 50.0;
-    if (const XmlProperty* fl = props.get("focal_length")) {
-      std::string s = fl->kind == XmlProperty::String ? fl->text : std::to_string(number(*fl));
-      if (s.size() > 2 && s.substr(s.size() - 2) == "mm") s.resize(s.size() - 2);
-      char* end = nullptr;
-      mm = std::strtod(s.c_str(), &end);
-      if (end != s.c_str() + s.size() || !(mm > 0.0) || !std::isfinite(mm)) throw InputError(fl->where + ": expected a focal length like \"50mm\"");
-    }
-    fov = 2.0 * std::atan(std::sqrt(36.0 * 36.0 + 24.0 * 24.0) / (2.0 * mm)) * 180.0 / 3.14159265358979323846;
+    XmlProperty fifty;
+    fifty.kind = XmlProperty::String;
+    fifty.text = "50mm";
+    const XmlProperty* fl = props.get("focal_length");
+    fov = focal_length_fov(fl ? *fl : fifty);
     axis = "diagonal";
   }
   // With a focal length Mitsuba 3 measures the diagonal, whatever fov_axis says.

@@ -114,6 +114,8 @@ class Translator {
   void film(const XmlObject& o);
 
   void rfilter(const XmlObject& o);
+  // A 35 mm film's diagonal field of view in degrees for a focal length like "50mm".
+  double focal_length_fov(const XmlProperty& focal_length);
   // The sensor's film and sampler (Mitsuba's defaults where absent).
   void render_settings(const XmlObject& sensor);
 
