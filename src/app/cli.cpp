@@ -75,7 +75,7 @@ struct SceneFlags {
     cmd->add_option("--seed", o.seed, "Random seed (0 to 2^64 - 1)")->check(kSeed);
     cmd->add_option("--width", o.width, "Image width in pixels")->check(CLI::Range(1, 16384));
     cmd->add_option("--height", o.height, "Image height in pixels")->check(CLI::Range(1, 16384));
-    cmd->add_option("--max-depth", o.max_depth, "Maximum path length")->check(CLI::Range(1, 1024));
+    cmd->add_option("--max-depth", o.max_depth, "Maximum path length")->check(CLI::Range(0, 1024));
     cmd->add_option("--accel", o.accel, "Ray casting: embree (the default where built) or bvh (our own)")
         ->check(CLI::IsMember({"bvh", "embree"}));
     cmd->add_flag("-q,--quiet", o.quiet, "No progress bar and no statistics");

@@ -11,7 +11,7 @@ void Loader::read_render(const json& j, const std::string& p) {
   if (j.contains("height")) rs.height = int(r.integer(j["height"], child(p, "height"), 1, 16384));
   if (j.contains("spp")) rs.spp = int(r.integer(j["spp"], child(p, "spp"), 1, 1 << 24));
   if (j.contains("seed")) rs.seed = r.unsigned_integer(j["seed"], child(p, "seed"));
-  if (j.contains("max_depth")) rs.max_depth = int(r.integer(j["max_depth"], child(p, "max_depth"), 1, 1024));
+  if (j.contains("max_depth")) rs.max_depth = int(r.integer(j["max_depth"], child(p, "max_depth"), 0, 1024));
   if (j.contains("filter")) read_filter(j["filter"], child(p, "filter"));
   if (j.contains("accel")) {
     const std::string a = r.string(j["accel"], child(p, "accel"));

@@ -18,6 +18,7 @@ Color WhittedIntegrator::trace(const Ray& ray, const Scene& scene, Sampler& samp
   const Vec3 wo_l = hit.frame.to_local(wo);
   const Bsdf& m = *hit.material;
   Color L = scene.emitted(hit, wo_l);
+  if (depth >= max_depth_) return L;  // max_depth 0: what the camera sees emit, only
   if (m.has(kBsdfDiffuse)) return L + estimate_direct(scene, hit, wo, sampler);
   if (depth + 1 >= max_depth_) return L;
   // Mirrors and glass, and glossy lobes in their specular limit: follow every branch,

@@ -701,14 +701,15 @@ TEST_CASE("mitsuba: film crop, sampler sample_count and integrator max_depth", "
     CHECK(loaded.scene->render.seed == 11);
     CHECK(loaded.integrator_type == "path");
   }
-  SECTION("max_depth counts segments: 2 is our 1, -1 is unlimited (1024), no value is unlimited") {
+  SECTION("max_depth counts segments: 2 is our 1, 1 our 0, -1 is unlimited (1024), no value is unlimited") {
     auto depth = [&](const std::string& integ) { return parse_scene(scene_with("", integ), "scene.xml", ".").scene->render.max_depth; };
     CHECK(depth("<integer name=\"max_depth\" value=\"2\"/>") == 1);
     CHECK(depth("<integer name=\"max_depth\" value=\"5\"/>") == 4);
     CHECK(depth("<integer name=\"max_depth\" value=\"-1\"/>") == 1024);
     CHECK(depth("") == 1024);
-    CHECK_THAT(error_of([&] { depth("<integer name=\"max_depth\" value=\"1\"/>"); }),
-               Contains("<integer name=\"max_depth\">: max_depth 1 is not supported"));
+    CHECK(depth("<integer name=\"max_depth\" value=\"1\"/>") == 0);  // emitters only
+    CHECK_THAT(error_of([&] { depth("<integer name=\"max_depth\" value=\"0\"/>"); }),
+               Contains("<integer name=\"max_depth\">: max_depth 0 is not supported"));
   }
   SECTION("a crop window renders the same pixels as the full film") {
     const std::string crop = R"(<integer name="crop_offset_x" value="8"/><integer name="crop_offset_y" value="4"/>
@@ -1182,4 +1183,42 @@ TEST_CASE("mitsuba: a spot's texture and a projector", "[mitsuba]") {
   CHECK(proj["fov"].get<double>() == Approx(2.0 * std::atan(std::sqrt(36.0 * 36.0 + 24.0 * 24.0) / 70.0) * 180.0 / 3.14159265358979));
   CHECK_THAT(error_of([] { translate(xml_scene(R"(  <emitter type="point"><texture type="checkerboard" name="texture"/></emitter>)")); }),
              Contains("<texture"));
+}
+
+TEST_CASE("mitsuba: a <path> in an included file that is not next to it is resolved from the scene's folder", "[mitsuba]") {
+  // Mitsuba's own documentation scenes: docs/scenes/include/emitter_scene.xml says
+  // <path value="../../common"/>, which exists from docs/scenes (the scene's folder), not from
+  // docs/scenes/include. Mitsuba 3 tries the file's folder, then its file resolver.
+  test::TempDir dir;
+  namespace fs = std::filesystem;
+  fs::create_directories(dir.path() / "docs" / "scenes" / "include");
+  fs::create_directories(dir.path() / "common");
+  dir.write("common/tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  dir.write("docs/scenes/include/parts.xml", xml_scene(R"(  <path value="../../common"/>
+  <shape type="obj"><string name="filename" value="tri.obj"/></shape>)"));
+  const std::string main = dir.write("docs/scenes/main.xml", loadable(R"(  <include filename="include/parts.xml"/>)"));
+  const json d = read_mitsuba(test::read_text(main), main, (dir.path() / "docs" / "scenes").string(), {}).doc;
+  REQUIRE(d["objects"].size() == 1);
+  CHECK(fs::equivalent(d["objects"][0]["file"].get<std::string>(), dir.path() / "common" / "tri.obj"));
+  // A folder found nowhere names every place tried.
+  dir.write("docs/scenes/include/bad.xml", xml_scene(R"(  <path value="../../nowhere"/>)"));
+  const std::string bad = dir.write("docs/scenes/bad.xml", loadable(R"(  <include filename="include/bad.xml"/>)"));
+  CHECK_THAT(error_of([&] { read_mitsuba(test::read_text(bad), bad, (dir.path() / "docs" / "scenes").string(), {}); }),
+             Contains("the folder does not exist: tried") && Contains("include/../../nowhere") && Contains("scenes/../../nowhere"));
+}
+
+TEST_CASE("mitsuba: plugin names in any case (\"Rectangle\" from exported scenes); a bump map's texture by any name", "[mitsuba]") {
+  const json d = translate(xml_scene(R"(  <shape type="Sphere"/>
+  <bsdf type="BumpMap" id="b"><texture type="checkerboard" name="tiles_bump"/><bsdf type="Diffuse"/></bsdf>)"));
+  CHECK(d["objects"][0]["type"] == "sphere");
+  CHECK(d["materials"]["b"]["type"] == "bumpmap");
+  CHECK(d["materials"]["b"]["height"]["type"] == "checkerboard");
+  CHECK(d["materials"]["b"]["bsdf"]["type"] == "diffuse");
+}
+
+TEST_CASE("mitsuba: a sampler declared at the top level with an id and referred to from the sensor", "[mitsuba]") {
+  // Mitsuba's documentation scenes declare <sampler type="..." id="my_sampler"> beside the sensor.
+  const json d = translate(xml_scene(R"(  <sampler type="multijitter" id="s"><integer name="sample_count" value="16"/></sampler>
+  <sensor type="perspective"><ref id="s"/></sensor>)"));
+  CHECK(d["render"]["spp"] == 16);
 }

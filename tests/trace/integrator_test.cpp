@@ -3,6 +3,7 @@
 #include <tbb/global_control.h>
 #include "io/scene_loader.h"
 #include "support/scenes.h"
+#include "support/render_util.h"
 #include "trace/render.h"
 
 using namespace caustica;
@@ -58,4 +59,27 @@ TEST_CASE("integrator factory: unknown names and keys are errors", "[trace]") {
                       Catch::Contains("s.json: /integrator/rr_dpth: unknown key") && Catch::Contains("rr_depth"));
   src.value = {{"rr_depth", -1}};
   REQUIRE_THROWS_WITH(create_integrator("path", src, rs), Catch::Contains("/integrator/rr_depth"));
+}
+
+TEST_CASE("max_depth 0: every integrator renders only the emitters the camera sees", "[trace]") {
+  // Mitsuba's max_depth 1: the camera ray's emission and nothing else.
+  std::string scene = test::read_scene_file("scenes/cornell-box.json");
+  scene.replace(scene.find("\"render\": {"), std::string("\"render\": {").size(), "\"render\": {\"max_depth\": 0, ");
+  const auto path = test::render_text(scene, "path", "{}", 4, 32, 32);
+  int lit = 0;
+  for (const Color& c : path.image.pixels) {
+    // The light's emission (17, 12, 4) or nothing.
+    const bool light = c.x > 0.0f;
+    lit += light;
+    if (light) CHECK(c.x == Approx(17.0f * c.z / 4.0f).epsilon(1e-4));
+    else CHECK(c == Color(0.0f));
+  }
+  CHECK(lit > 0);
+  const char* runs[][2] = {{"photon", R"({"photons": 2000, "caustic_photons": 2000})"}, {"sppm", R"({"photons": 2000})"}, {"whitted", "{}"}};
+  for (const auto& run : runs) {
+    const char* integrator = run[0];
+    INFO(integrator);
+    const auto r = test::render_text(scene, integrator, run[1], 4, 32, 32);
+    CHECK(test::region_mean(r.image, 0, 0, 32, 32).x == Approx(test::region_mean(path.image, 0, 0, 32, 32).x).epsilon(1e-5));
+  }
 }

@@ -50,6 +50,8 @@ TranslatedScene Translator::run() {
     } else if (o.tag == "bsdf" || o.tag == "texture") {
       // Materialised where a shape uses it; an unused one is checked all the same.
       if (o.tag == "bsdf") material_name(o, nullptr);
+    } else if ((o.tag == "sampler" || o.tag == "film" || o.tag == "rfilter") && !o.id.empty()) {
+      // Declared with an id for a sensor to refer to: read there.
     } else {
       unsupported(o, o.tag, {}, "skipped");
     }

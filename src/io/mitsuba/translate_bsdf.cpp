@@ -109,8 +109,8 @@ json Translator::bsdf(const XmlObject& o, const std::string& p) {
   for (const XmlChild& c : o.children) {
     const XmlObject& k = *c.object;
     if (k.tag == "texture") {
-      // A bump map's height texture is its one unnamed texture.
-      const std::string name = c.name.empty() && o.type == "bumpmap" ? "height" : c.name;
+      // A bump map's height is its one texture, whatever its name (Mitsuba 3 takes any).
+      const std::string name = o.type == "bumpmap" ? "height" : c.name;
       if (name.empty()) throw InputError(c.where + ": a texture inside a BSDF needs a name (the parameter it sets)");
       if (j.contains(name)) throw InputError(c.where + ": \"" + name + "\" is given twice");
       j[name] = texture(k, p + "/" + name);

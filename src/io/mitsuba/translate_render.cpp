@@ -221,9 +221,9 @@ void Translator::sampler(const XmlObject& o) {
 int64_t Translator::depth(const XmlProperty* p, int64_t fallback_segments) {
   const int64_t m = p ? integer(*p) : fallback_segments;
   if (m == -1) return kUnlimitedDepth;
-  if (m < 2 || m > kUnlimitedDepth + 1) {
+  if (m < 1 || m > kUnlimitedDepth + 1) {
     throw InputError((p ? p->where : std::string("integrator")) + ": max_depth " + std::to_string(m) +
-                     " is not supported (from 2 to " + std::to_string(kUnlimitedDepth + 1) + ", or -1)");
+                     " is not supported (from 1 to " + std::to_string(kUnlimitedDepth + 1) + ", or -1)");
   }
   return m - 1;
 }

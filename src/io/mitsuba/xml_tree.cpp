@@ -210,11 +210,23 @@ void Parser::read_children(Source& src, const pugi::xml_node& node, XmlObject& o
       include(src, c, obj, depth, upgrade);
     } else if (tag == "path") {
       if (&obj != scene_.objects.front().get()) fail(src, c, "<path> belongs directly in the <scene>");
-      fs::path dir = required_attr(src, c, "value");
-      if (dir.is_relative()) dir = fs::path(src.dir) / dir;
+      const fs::path value = required_attr(src, c, "value");
+      // As Mitsuba 3: next to the file naming it, then through the file resolver (the main
+      // scene's folder, then the <path> folders so far).
+      std::vector<fs::path> tried = {value};
+      if (value.is_relative()) {
+        tried = {fs::path(src.dir) / value};
+        if (src.dir != scene_.root().dir) tried.push_back(fs::path(scene_.root().dir) / value);
+        for (const std::string& d : scene_.search_paths) tried.push_back(fs::path(d) / value);
+      }
       std::error_code ec;
-      if (!fs::is_directory(dir, ec)) fail(src, c, "the folder " + dir.string() + " does not exist");
-      scene_.search_paths.insert(scene_.search_paths.begin(), dir.string());
+      const auto found = std::find_if(tried.begin(), tried.end(), [&](const fs::path& d) { return fs::is_directory(d, ec); });
+      if (found == tried.end()) {
+        std::string all;
+        for (const fs::path& t : tried) all += (all.empty() ? "" : ", ") + t.string();
+        fail(src, c, tried.size() == 1 ? "the folder " + all + " does not exist" : "the folder does not exist: tried " + all);
+      }
+      scene_.search_paths.insert(scene_.search_paths.begin(), found->string());
     } else if (tag == "alias") {
       check_attributes(src, c, {"id", "as"});
       const std::string id = required_attr(src, c, "id"), as = required_attr(src, c, "as");
@@ -238,7 +250,10 @@ void Parser::read_children(Source& src, const pugi::xml_node& node, XmlObject& o
     } else if (is_object_tag(tag) && tag != "scene") {
       auto o = std::make_unique<XmlObject>();
       o->tag = tag;
+      // Plugin names in lower case: Mitsuba finds plugins by file name, so "Rectangle" (as in
+      // some exported scenes) loads where the file system ignores case.
       o->type = attr(src, c, "type");
+      for (char& ch : o->type) ch = char(std::tolower(static_cast<unsigned char>(ch)));
       o->id = attr(src, c, "id");
       o->where = where(src, c);
       o->dir = src.dir;
