@@ -89,7 +89,7 @@ Image render_image(const Scene& scene, Integrator& integrator, const RenderOptio
             L = Color(0.0f);
             ++tile_bad;
           }
-          L *= sampler.filter_weight;
+          L *= sampler.filter_weight;  // (the AOVs stay unweighted: filtered by |f|)
           for (int c = 0; c < 3; ++c) add_saturating(sum[pixel * 3 + size_t(c)], to_fixed(L[c]));
           for (int a = 0; a < (want_aov ? kA : 0); ++a) add_saturating(aov_sum[pixel * kA + size_t(a)], to_fixed(aov[a]));
           ++pixel_passes[pixel];

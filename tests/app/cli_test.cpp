@@ -439,15 +439,24 @@ TEST_CASE("cli: a signal during the photon pass stops it at once and writes no i
   // millions) before the render noticed the stop.
   test::TempDir dir;
   const std::string scene = std::string(CAUSTICA_SOURCE_DIR) + "/scenes/cornell-box.json";
-  const auto t0 = std::chrono::steady_clock::now();
-  // 20 million photons: a photon pass far longer than the 2 s before the signal.
+  // The signal must come once the photon pass runs: in a sanitizer build on a loaded machine
+  // the program's start took longer than 2 s (the default action then killed it, silently).
+  // Wait three times as long as a small photon render takes, at least 2 s.
+  auto t0 = std::chrono::steady_clock::now();
+  REQUIRE(run_caustica("render '" + scene + "' --integrator photon --photons 1000 --spp 1 --width 8 --height 8 -q -o small.exr",
+                       dir).exit_code == 0);
+  const double delay = std::max(2.0, 3.0 * std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+  fs::remove(dir.file("small.exr"));
+  INFO("signal after " << delay << " s");
+  t0 = std::chrono::steady_clock::now();
+  // 20 million photons: a photon pass far longer than the delay before the signal.
   const auto r = run_caustica("render '" + scene + "' --integrator photon --photons 20000000 --width 32 --height 32 "
-                              "--threads 2 -o out.exr", dir, "timeout --preserve-status -s INT 2 ");
+                              "--threads 2 -o out.exr", dir, "timeout --preserve-status -s INT " + std::to_string(delay) + " ");
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   INFO(r.err << r.out);
   CHECK(r.exit_code == 130);
   CHECK(r.err.find("interrupted before the first pass was complete: no image written") != std::string::npos);
-  CHECK(seconds < 2.0 + 1.5);  // about 0.05 s after the signal in a Release build; was 2 s
+  CHECK(seconds < delay + 1.5);  // about 0.05 s after the signal in a Release build; was 2 s
   CHECK_FALSE(fs::exists(dir.file("out.exr")));
   for (const auto& e : fs::directory_iterator(dir.path())) {
     CHECK(e.path().filename().string().find(".tmp") == std::string::npos);

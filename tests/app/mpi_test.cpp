@@ -2,6 +2,8 @@
 // bit for bit, and a failing rank fails the run without an image. Skipped, with a message, when
 // this build has no MPI or mpirun is not installed (scripts/setup.sh installs it).
 #include <catch2/catch.hpp>
+#include <algorithm>
+#include <chrono>
 #include <cstdlib>
 #include <filesystem>
 #include <regex>
@@ -140,15 +142,23 @@ TEST_CASE("mpi: SIGTERM (a scheduler's time limit) writes the passes completed b
   test::TempDir dir;
   const std::string args =
       "render '" + scene_path() + "' --width 32 --height 32 --spp 1000000 --threads 1 -o out.pfm";
+  // The signal must come after the first round of passes, which on a loaded machine took
+  // longer than 3 s: wait three times as long as a 4-pass run of two ranks takes, at least 3 s.
+  const auto t0 = std::chrono::steady_clock::now();
+  REQUIRE(run_caustica("render '" + scene_path() + "' --width 32 --height 32 --spp 4 --threads 1 -q -o warm.pfm", dir,
+                       kMpirun + "-np 2 ").exit_code == 0);
+  const double delay = std::max(3.0, 3.0 * std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+  std::filesystem::remove(dir.file("warm.pfm"));
+  INFO("signal after " << delay << " s");
   std::string prefix;
   SECTION("to mpirun, which passes it on to the ranks") {
     // --foreground: timeout signals mpirun alone. Without it, it signals its whole process group
     // as well, mpirun receives SIGTERM twice, and Open MPI takes a second signal as "kill now".
-    prefix = "timeout --foreground -s TERM 4 " + kMpirun + "-np 2 ";
+    prefix = "timeout --foreground -s TERM " + std::to_string(delay + 1.0) + " " + kMpirun + "-np 2 ";
   }
   SECTION("to every rank, as Slurm sends it") {
-    dir.write("term-after-3s.sh", "(sleep 3; kill -TERM $$) &\nexec \"$@\"\n");
-    prefix = kMpirun + "-np 2 sh term-after-3s.sh ";
+    dir.write("term-after.sh", "(sleep " + std::to_string(delay) + "; kill -TERM $$) &\nexec \"$@\"\n");
+    prefix = kMpirun + "-np 2 sh term-after.sh ";
   }
   const auto r = run_caustica(args, dir, prefix);
   INFO("stdout: " << r.out << "\nstderr: " << r.err);

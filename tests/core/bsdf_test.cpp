@@ -1291,6 +1291,11 @@ TEST_CASE("principled: parameters are checked, textures accepted", "[core][bsdf]
   CHECK(t.bsdf().eval(wo, wi, a) == (a_is_c0 ? smooth : rough).bsdf().eval(wo, wi, a));
   CHECK(t.bsdf().eval(wo, wi, b) == (a_is_c0 ? rough : smooth).bsdf().eval(wo, wi, b));
   CHECK(t.bsdf().glossy_roughness() == 0.0f);
+  // A thin sheet with spec_trans 1 has no diffuse part: photons are not stored on it.
+  CHECK((load_bsdf(R"({"type": "principledthin", "spec_trans": 1})").bsdf().flags() & kBsdfDiffuse) == 0);
+  CHECK((load_bsdf(R"({"type": "principledthin", "spec_trans": 0.5})").bsdf().flags() & kBsdfDiffuse) != 0);
+  CHECK_THROWS_WITH(load_bsdf(R"({"type": "roughconductor", "alpha_u": {"type": "checkerboard"}, "alpha_v": -1})"),
+                    Catch::Contains("m.json: /materials/m/alpha_v"));
 }
 
 // ---- ward, coating, roughcoating ----------------------------------------------------------

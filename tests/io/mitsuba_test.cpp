@@ -1181,6 +1181,9 @@ TEST_CASE("mitsuba: a spot's texture and a projector", "[mitsuba]") {
   CHECK(proj["scale"] == 3.0);
   CHECK(proj["fov_axis"] == "diagonal");
   CHECK(proj["fov"].get<double>() == Approx(2.0 * std::atan(std::sqrt(36.0 * 36.0 + 24.0 * 24.0) / 70.0) * 180.0 / 3.14159265358979));
+  // fov_axis without fov: Mitsuba measures its default angle diagonally all the same.
+  const json d2 = translate(xml_scene(R"(  <emitter type="projector"><string name="fov_axis" value="y"/></emitter>)"));
+  CHECK_FALSE(d2["lights"][0].contains("fov_axis"));
   CHECK_THAT(error_of([] { translate(xml_scene(R"(  <emitter type="point"><texture type="checkerboard" name="texture"/></emitter>)")); }),
              Contains("<texture"));
 }

@@ -50,7 +50,7 @@ Roughness read_roughness(const Params& p) {
   if (p.has("alpha_u") != p.has("alpha_v")) p.fail("", "alpha_u and alpha_v go together");
   auto alpha = [&](const char* key) {
     const ColorParam a = p.texture(key, Color(0.1f));
-    if (!a.texture && !(a.value.x <= 4.0f && a.value.y == a.value.x && a.value.z == a.value.x)) {
+    if (!a.texture && !(a.value.x >= 0.0f && a.value.x <= 4.0f && a.value.y == a.value.x && a.value.z == a.value.x)) {
       p.fail(key, std::string(key) + " must be one number from 0 to 4, or a texture");
     }
     return a;

@@ -141,7 +141,10 @@ bool PrincipledThin::sample(const Vec3& wo, const Vec2& u, float u_lobe, BsdfSam
 }
 
 uint32_t PrincipledThin::flags() const {
-  uint32_t f = kBsdfDiffuse | kBsdfReflection | kBsdfGlossy;
+  uint32_t f = kBsdfReflection | kBsdfGlossy;
+  // The diffuse part is there unless spec_trans is the number 1.
+  const bool all_specular = s_.spec_trans.has && !s_.spec_trans.value.texture && s_.spec_trans.value.value.x == 1.0f;
+  if (!all_specular) f |= kBsdfDiffuse;
   if (s_.diff_trans.has || s_.spec_trans.has) f |= kBsdfTransmission;
   return f;
 }

@@ -68,7 +68,10 @@ void Translator::emitter(const XmlObject& o) {
         note(p + "/" + key, v->where);
       }
     }
-    if (const XmlProperty* a = props.get("fov_axis")) l["fov_axis"] = string(*a);
+    // Without fov, Mitsuba measures the default (or focal_length's) angle diagonally.
+    if (const XmlProperty* a = props.get("fov_axis")) {
+      if (props.get("fov")) l["fov_axis"] = string(*a);
+    }
     if (const XmlProperty* fl = props.get("focal_length")) {
       if (props.get("fov")) throw InputError(fl->where + ": give fov or focal_length, not both");
       l["fov"] = focal_length_fov(*fl);
