@@ -87,8 +87,7 @@ static Vec2 film_to_screen(float fx, float fy, int film_w, int film_h) {
 Ray Camera::film_ray(float fx, float fy) const {
   const Vec2 s = film_to_screen(fx, fy, film_width_, film_height_);
   if (orthographic()) {
-    const float half_h = 0.5f * (ortho_height_ > 0.0f ? ortho_height_ : ortho_width_ / aspect_);
-    return Ray{position_ + (0.5f * ortho_width_ * s.x) * right_ + (half_h * s.y) * up_, forward_, kInfinity};
+    return Ray{position_ + (0.5f * ortho_width_ * s.x) * right_ + (ortho_half_height() * s.y) * up_, forward_, kInfinity};
   }
   return Ray{position_, glm::normalize(forward_ + (s.x * tan_half_ * aspect_) * right_ + (s.y * tan_half_) * up_), kInfinity};
 }
@@ -105,9 +104,8 @@ bool Camera::project(const Vec3& p, float& x, float& y) const {
   if (z <= 0.0f) return false;
   float sx, sy;
   if (orthographic()) {
-    const float half_h = 0.5f * (ortho_height_ > 0.0f ? ortho_height_ : ortho_width_ / aspect_);
     sx = glm::dot(d, right_) / (0.5f * ortho_width_);
-    sy = glm::dot(d, up_) / half_h;
+    sy = glm::dot(d, up_) / ortho_half_height();
   } else {
     sx = glm::dot(d, right_) / (z * tan_half_ * aspect_);
     sy = glm::dot(d, up_) / (z * tan_half_);

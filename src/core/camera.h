@@ -53,6 +53,8 @@ class Camera {
 
  private:
   void update_tan();
+  // Half the orthographic view's height: given, or from the width and the film's aspect.
+  float ortho_half_height() const { return 0.5f * (ortho_height_ > 0.0f ? ortho_height_ : ortho_width_ / aspect_); }
   // The ray through position (fx, fy) of the whole film, in pixels.
   Ray film_ray(float fx, float fy) const;
   Vec3 position_{0.0f}, forward_{0, 0, 1}, right_{1, 0, 0}, up_{0, 1, 0};

@@ -66,13 +66,7 @@ Color Coating::surface_eval(const Vec3& wo_in, const Vec3& wi_in, const ShadingP
   return specular_.at(sp.uv) * (F * d * dist_->G1(wo) * dist_->G1(wi) / (4.0f * wo.z * wi.z));
 }
 
-float Coating::surface_pdf(const Vec3& wo_in, const Vec3& wi_in) const {
-  if (!dist_ || wo_in.z * wi_in.z <= 0.0f) return 0.0f;
-  const Vec3 wo = wo_in.z < 0 ? flip_z(wo_in) : wo_in, wi = wo_in.z < 0 ? flip_z(wi_in) : wi_in;
-  const Vec3 h = glm::normalize(wo + wi);
-  const float wih = glm::dot(wi, h);
-  return wih > 0.0f ? dist_->pdf(wo, h) / (4.0f * wih) : 0.0f;
-}
+float Coating::surface_pdf(const Vec3& wo, const Vec3& wi) const { return dist_ ? reflection_pdf(*dist_, wo, wi) : 0.0f; }
 
 Color Coating::eval(const Vec3& wo, const Vec3& wi, const ShadingPoint& sp) const {
   Color f = surface_eval(wo, wi, sp);

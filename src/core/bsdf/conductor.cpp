@@ -35,12 +35,8 @@ Color RoughConductor::eval(const Vec3& wo_in, const Vec3& wi_in, const ShadingPo
   return specular_.at(sp.uv) * ior_.reflectance(glm::dot(wo, h)) * (d * dist.G(wo, wi) / (4.0f * wo.z * wi.z));
 }
 
-float RoughConductor::pdf(const Vec3& wo_in, const Vec3& wi_in, const ShadingPoint& sp) const {
-  if (wo_in.z * wi_in.z <= 0.0f) return 0.0f;
-  const Vec3 wo = wo_in.z < 0 ? flip_z(wo_in) : wo_in, wi = wo_in.z < 0 ? flip_z(wi_in) : wi_in;
-  const Vec3 h = glm::normalize(wo + wi);
-  const float woh = glm::dot(wo, h);
-  return woh > 0.0f ? rough_.at(sp.uv).pdf(wo, h) / (4.0f * woh) : 0.0f;
+float RoughConductor::pdf(const Vec3& wo, const Vec3& wi, const ShadingPoint& sp) const {
+  return reflection_pdf(rough_.at(sp.uv), wo, wi);
 }
 
 bool RoughConductor::sample(const Vec3& wo_in, const Vec2& u, float, BsdfSample& s, const ShadingPoint& sp) const {

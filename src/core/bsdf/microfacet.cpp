@@ -138,6 +138,16 @@ std::pair<double, double> rough_boundary(const MicrofacetDistribution& dist, flo
   return {r / (m * m), t / (m * m)};
 }
 
+float reflection_pdf(const MicrofacetDistribution& dist, const Vec3& wo_in, const Vec3& wi_in) {
+  if (wo_in.z * wi_in.z <= 0.0f) return 0.0f;
+  // Mirrored up in z, as the BSDFs' two-sided lobes are.
+  const bool below = wo_in.z < 0;
+  const Vec3 wo = below ? Vec3(wo_in.x, wo_in.y, -wo_in.z) : wo_in, wi = below ? Vec3(wi_in.x, wi_in.y, -wi_in.z) : wi_in;
+  const Vec3 h = glm::normalize(wo + wi);
+  const float woh = glm::dot(wo, h);
+  return woh > 0.0f ? dist.pdf(wo, h) / (4.0f * woh) : 0.0f;
+}
+
 Roughness::Roughness(MicrofacetType type, const ColorParam& alpha_u, const ColorParam& alpha_v)
     : fixed_(type, clamp_alpha(alpha_u.value.x), clamp_alpha(alpha_v.value.x)),
       alpha_u_(alpha_u),

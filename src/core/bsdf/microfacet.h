@@ -36,6 +36,10 @@ class MicrofacetDistribution {
   float ax_, ay_;
 };
 
+// Solid-angle density of wi when a microfacet normal visible from wo is sampled and wo reflected
+// about it; two-sided (both directions on either side of the surface), 0 across it.
+float reflection_pdf(const MicrofacetDistribution& dist, const Vec3& wo, const Vec3& wi);
+
 // A rough dielectric boundary's directional reflectance and transmittance (fractions of
 // energy, single scattering: their sum falls below 1 as the surface gets rougher) for light
 // arriving at cos theta from the side where the relative index is eta.

@@ -76,17 +76,38 @@ Choice choose(bool front, float Fd, float brdf, float bsdf, float clearcoat, boo
 }
 }  // namespace
 
-Color Principled::eval_m(const Vec3& wi, const Vec3& wo, const Local& l) const {
-  const float ci = wi.z, co = wo.z;
-  if (ci == 0.0f) return Color(0.0f);
-  const bool front = ci > 0.0f, reflect = ci * co > 0.0f, refract = ci * co < 0.0f;
-  const float eta_p = front ? s_.eta : 1.0f / s_.eta;
-  Vec3 h = glm::normalize(wi + (reflect ? 1.0f : eta_p) * wo);
-  h = mulsign(h, h.z);
-  if (!std::isfinite(h.x)) return Color(0.0f);
-  const float wih = glm::dot(wi, h), woh = glm::dot(wo, h);
-  const float Fd = fresnel(wih, s_.eta).F;
-  const bool cr = compatible(h, wi, wo, ci, true), ct = compatible(h, wi, wo, ci, false);
+// What eval and pdf both derive from the pair of directions: which side wi is on, whether wo is
+// reflected or refracted, the (generalised) half vector turned up, the dielectric's Fresnel
+// there, and whether the microfacet can reflect or refract wi into wo.
+struct Principled::Geometry {
+  Vec3 wi, wo;
+  float ci = 0, co = 0, eta_p = 1, wih = 0, woh = 0, Fd = 0;
+  bool valid = false, front = false, reflect = false, refract = false, cr = false, ct = false;
+  Vec3 h{0.0f};
+};
+
+Principled::Geometry Principled::geometry(const Vec3& wi, const Vec3& wo) const {
+  Geometry g;
+  g.wi = wi, g.wo = wo;
+  g.ci = wi.z, g.co = wo.z;
+  if (g.ci == 0.0f) return g;
+  g.front = g.ci > 0.0f, g.reflect = g.ci * g.co > 0.0f, g.refract = g.ci * g.co < 0.0f;
+  g.eta_p = g.front ? s_.eta : 1.0f / s_.eta;
+  const Vec3 h = glm::normalize(wi + (g.reflect ? 1.0f : g.eta_p) * wo);
+  g.h = mulsign(h, h.z);
+  if (!std::isfinite(g.h.x)) return g;
+  g.wih = glm::dot(wi, g.h), g.woh = glm::dot(wo, g.h);
+  g.Fd = fresnel(g.wih, s_.eta).F;
+  g.cr = compatible(g.h, wi, wo, g.ci, true), g.ct = compatible(g.h, wi, wo, g.ci, false);
+  g.valid = true;
+  return g;
+}
+
+Color Principled::eval_m(const Geometry& g, const Local& l) const {
+  if (!g.valid) return Color(0.0f);
+  const Vec3 &wi = g.wi, &wo = g.wo, &h = g.h;
+  const float ci = g.ci, co = g.co, eta_p = g.eta_p, wih = g.wih, woh = g.woh, Fd = g.Fd;
+  const bool front = g.front, reflect = g.reflect, refract = g.refract, cr = g.cr, ct = g.ct;
   const float D = l.dist.D(h), G = smith_g1(l.dist, wi, h) * smith_g1(l.dist, wo, h);
   Color f(0.0f);
   if (reflect && cr && Fd > 0.0f) {
@@ -117,23 +138,18 @@ Color Principled::eval_m(const Vec3& wi, const Vec3& wo, const Local& l) const {
     const float k = diffuse_factor(l.r, cos_d, std::abs(co), std::abs(ci), l.flatness, s_.flatness.has);
     f += l.base * (l.brdf * kInvPi * k * std::abs(co));
     if (s_.sheen.has && l.sheen > 0.0f && 1.0f - l.metallic > 0.0f) {
-      const Color sheen_tint = s_.sheen_tint.has ? Color(1.0f - l.sheen_tint) + l.sheen_tint * l.tint : Color(1.0f);
+      const Color sheen_tint = sheen_colour(s_.sheen_tint, l.sheen_tint, l.tint);
       f += sheen_tint * (l.sheen * (1.0f - l.metallic) * schlick_weight(std::abs(cos_d)) * std::abs(co));
     }
   }
   return f;
 }
 
-float Principled::pdf_m(const Vec3& wi, const Vec3& wo, const Local& l) const {
-  const float ci = wi.z, co = wo.z;
-  if (ci == 0.0f) return 0.0f;
-  const bool front = ci > 0.0f, reflect = ci * co > 0.0f, refract = ci * co < 0.0f;
-  const float eta_p = front ? s_.eta : 1.0f / s_.eta;
-  Vec3 h = glm::normalize(wi + (reflect ? 1.0f : eta_p) * wo);
-  h = mulsign(h, h.z);
-  if (!std::isfinite(h.x)) return 0.0f;
-  const float wih = glm::dot(wi, h), woh = glm::dot(wo, h);
-  const float Fd = fresnel(wih, s_.eta).F;
+float Principled::pdf_m(const Geometry& g, const Local& l) const {
+  if (!g.valid) return 0.0f;
+  const Vec3 &wi = g.wi, &h = g.h;
+  const float ci = g.ci, co = g.co, eta_p = g.eta_p, wih = g.wih, woh = g.woh, Fd = g.Fd;
+  const bool front = g.front, reflect = g.reflect, refract = g.refract, cr = g.cr, ct = g.ct;
   const Choice c = choose(front, Fd, l.brdf, l.bsdf, l.clearcoat, s_.spec_trans.has, s_.clearcoat.has, s_.rate_specular,
                           s_.rate_clearcoat, s_.rate_diffuse);
   const Vec3 wi_up = mulsign(wi, ci);
@@ -142,7 +158,6 @@ float Principled::pdf_m(const Vec3& wi, const Vec3& wo, const Local& l) const {
     const float denom = wih + eta_p * woh;
     jacobian = eta_p * eta_p * std::abs(woh) / (denom * denom);
   }
-  const bool cr = compatible(h, wi, wo, ci, true), ct = compatible(h, wi, wo, ci, false);
   float p = 0.0f;
   const float vis = visible_pdf(l.dist, wi_up, h);
   if (reflect && cr) p += c.reflect * vis * jacobian;
@@ -154,10 +169,10 @@ float Principled::pdf_m(const Vec3& wi, const Vec3& wo, const Local& l) const {
 
 Color Principled::eval(const Vec3& wo, const Vec3& wi, const ShadingPoint& sp) const {
   if (wi.z == 0.0f) return Color(0.0f);
-  return eval_m(wo, wi, at(sp)) / std::abs(wi.z);
+  return eval_m(geometry(wo, wi), at(sp)) / std::abs(wi.z);
 }
 
-float Principled::pdf(const Vec3& wo, const Vec3& wi, const ShadingPoint& sp) const { return pdf_m(wo, wi, at(sp)); }
+float Principled::pdf(const Vec3& wo, const Vec3& wi, const ShadingPoint& sp) const { return pdf_m(geometry(wo, wi), at(sp)); }
 
 bool Principled::sample(const Vec3& wo, const Vec2& u, float u_lobe, BsdfSample& s, const ShadingPoint& sp) const {
   // In Mitsuba's names: wi = our wo (towards the viewer), the sampled wo = our wi.
@@ -191,9 +206,10 @@ bool Principled::sample(const Vec3& wo, const Vec2& u, float u_lobe, BsdfSample&
     if (!compatible(m, wi, out, ci, true) || !(ci * out.z > 0.0f)) return false;
     s.lobe = kBsdfGlossy | kBsdfReflection;
   }
-  s.pdf = pdf_m(wi, out, l);
+  const Geometry g = geometry(wi, out);
+  s.pdf = pdf_m(g, l);
   if (!(s.pdf > 0.0f)) return false;
-  s.weight = eval_m(wi, out, l) / s.pdf;
+  s.weight = eval_m(g, l) / s.pdf;
   s.wi = out;
   s.delta = false;
   return is_finite(s.weight);

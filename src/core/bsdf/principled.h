@@ -32,9 +32,12 @@ class Principled final : public Bsdf {
  private:
   struct Local;  // the parameters at a shading point
   Local at(const ShadingPoint& sp) const;
-  // Mitsuba's eval (f |cos wo|) and pdf, wi towards the viewer and wo towards the light.
-  Color eval_m(const Vec3& wi, const Vec3& wo, const Local& l) const;
-  float pdf_m(const Vec3& wi, const Vec3& wo, const Local& l) const;
+  struct Geometry;  // what eval and pdf derive from the directions alone
+  // wi towards the viewer and wo towards the light, as Mitsuba names them.
+  Geometry geometry(const Vec3& wi, const Vec3& wo) const;
+  // Mitsuba's eval (f |cos wo|) and pdf.
+  Color eval_m(const Geometry& g, const Local& l) const;
+  float pdf_m(const Geometry& g, const Local& l) const;
   PrincipledSettings s_;
 };
 

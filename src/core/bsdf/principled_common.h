@@ -72,6 +72,10 @@ float visible_pdf(const MicrofacetDistribution& d, const Vec3& wi, const Vec3& m
 
 // base / luminance(base), white for black.
 Color tint_of(const Color& base);
+// The sheen's colour: white blended towards the tint by sheen_tint (white when not given).
+inline Color sheen_colour(const Param& sheen_tint, float amount, const Color& tint) {
+  return sheen_tint.has ? Color(1.0f - amount) + amount * tint : Color(1.0f);
+}
 
 // The Disney diffuse factor with retro-reflection, blended towards the fake subsurface term by
 // flatness: cos_d = h . wo, Fo and Fi the Schlick weights of |cos wo| and |cos wi|.

@@ -28,16 +28,30 @@ struct Choice {
 };
 }  // namespace
 
-// The symmetrised directions: wi turned up, wo with it; wo_r the transmitted one mirrored back up.
-Color PrincipledThin::eval_m(const Vec3& wi_in, const Vec3& wo_in, const Local& l) const {
+// The symmetrised directions: wi turned up, wo with it; wo_r the transmitted one mirrored back
+// up, and the half vector of wi and wo_r, shared by reflection and transmission.
+struct PrincipledThin::Geometry {
+  Vec3 wi, wo, wo_r, h;
+  bool valid = false, reflect = false, refract = false;
+};
+
+PrincipledThin::Geometry PrincipledThin::geometry(const Vec3& wi_in, const Vec3& wo_in) {
+  Geometry g;
   const float c = wi_in.z;
-  if (c == 0.0f) return Color(0.0f);
-  const Vec3 wi = mulsign(wi_in, c), wo = mulsign(wo_in, c);
+  if (c == 0.0f) return g;
+  g.wi = mulsign(wi_in, c), g.wo = mulsign(wo_in, c);
+  g.reflect = g.wo.z > 0.0f, g.refract = g.wo.z < 0.0f;
+  g.wo_r = Vec3(g.wo.x, g.wo.y, std::abs(g.wo.z));
+  g.h = glm::normalize(g.wi + g.wo_r);
+  g.valid = std::isfinite(g.h.x);
+  return g;
+}
+
+Color PrincipledThin::eval_m(const Geometry& g, const Local& l) const {
+  if (!g.valid) return Color(0.0f);
+  const Vec3 &wi = g.wi, &wo = g.wo, &h = g.h;
   const float ci = wi.z, co = wo.z;
-  const bool reflect = co > 0.0f, refract = co < 0.0f;
-  const Vec3 wo_r(wo.x, wo.y, std::abs(wo.z));
-  const Vec3 h = glm::normalize(wi + wo_r);
-  if (!std::isfinite(h.x)) return Color(0.0f);
+  const bool reflect = g.reflect, refract = g.refract;
   const float St = l.spec_trans, d = l.d;
   Color f(0.0f);
   if (s_.spec_trans.has) {
@@ -58,7 +72,7 @@ Color PrincipledThin::eval_m(const Vec3& wi_in, const Vec3& wo_in, const Local& 
     const float k = diffuse_factor(l.r, cos_d, std::abs(co), ci, l.flatness, s_.flatness.has);
     f += l.base * ((1.0f - St) * (1.0f - d) * kInvPi * k * co);
     if (s_.sheen.has && l.sheen > 0.0f) {
-      const Color sheen_tint = s_.sheen_tint.has ? Color(1.0f - l.sheen_tint) + l.sheen_tint * l.tint : Color(1.0f);
+      const Color sheen_tint = sheen_colour(s_.sheen_tint, l.sheen_tint, l.tint);
       f += sheen_tint * (l.sheen * (1.0f - St) * (1.0f - d) * schlick_weight(std::abs(cos_d)) * std::abs(co));
     }
   }
@@ -80,15 +94,11 @@ Choice choose(float St, float d, bool has_st, bool has_dt, const PrincipledThinS
 }
 }  // namespace
 
-float PrincipledThin::pdf_m(const Vec3& wi_in, const Vec3& wo_in, const Local& l) const {
-  const float c = wi_in.z;
-  if (c == 0.0f) return 0.0f;
-  const Vec3 wi = mulsign(wi_in, c), wo = mulsign(wo_in, c);
+float PrincipledThin::pdf_m(const Geometry& g, const Local& l) const {
+  if (!g.valid) return 0.0f;
+  const Vec3 &wi = g.wi, &wo = g.wo, &wo_r = g.wo_r, &h = g.h;
   const float co = wo.z;
-  const bool reflect = co > 0.0f, refract = co < 0.0f;
-  const Vec3 wo_r(wo.x, wo.y, std::abs(wo.z));
-  const Vec3 h = glm::normalize(wi + wo_r);
-  if (!std::isfinite(h.x)) return 0.0f;
+  const bool reflect = g.reflect, refract = g.refract;
   const Choice ch = choose(l.spec_trans, l.d, s_.spec_trans.has, s_.diff_trans.has, s_);
   const float jacobian = 1.0f / (4.0f * std::abs(glm::dot(wo_r, h)));
   float p = 0.0f;
@@ -101,10 +111,10 @@ float PrincipledThin::pdf_m(const Vec3& wi_in, const Vec3& wo_in, const Local& l
 
 Color PrincipledThin::eval(const Vec3& wo, const Vec3& wi, const ShadingPoint& sp) const {
   if (wi.z == 0.0f) return Color(0.0f);
-  return eval_m(wo, wi, at(sp)) / std::abs(wi.z);
+  return eval_m(geometry(wo, wi), at(sp)) / std::abs(wi.z);
 }
 
-float PrincipledThin::pdf(const Vec3& wo, const Vec3& wi, const ShadingPoint& sp) const { return pdf_m(wo, wi, at(sp)); }
+float PrincipledThin::pdf(const Vec3& wo, const Vec3& wi, const ShadingPoint& sp) const { return pdf_m(geometry(wo, wi), at(sp)); }
 
 bool PrincipledThin::sample(const Vec3& wo, const Vec2& u, float u_lobe, BsdfSample& s, const ShadingPoint& sp) const {
   const float c = wo.z;  // Mitsuba's wi
@@ -132,9 +142,10 @@ bool PrincipledThin::sample(const Vec3& wo, const Vec2& u, float u_lobe, BsdfSam
     s.lobe = kBsdfDiffuse | kBsdfTransmission;
   }
   out = mulsign(out, c);
-  s.pdf = pdf_m(wo, out, l);
+  const Geometry g = geometry(wo, out);
+  s.pdf = pdf_m(g, l);
   if (!(s.pdf > 0.0f)) return false;
-  s.weight = eval_m(wo, out, l) / s.pdf;
+  s.weight = eval_m(g, l) / s.pdf;
   s.wi = out;
   s.delta = false;
   return is_finite(s.weight);

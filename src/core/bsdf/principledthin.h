@@ -28,10 +28,14 @@ class PrincipledThin final : public Bsdf {
   Color albedo(const ShadingPoint& sp = {}) const override;
 
  private:
-  struct Local;
+  struct Local;  // the parameters at a shading point
   Local at(const ShadingPoint& sp) const;
-  Color eval_m(const Vec3& wi, const Vec3& wo, const Local& l) const;
-  float pdf_m(const Vec3& wi, const Vec3& wo, const Local& l) const;
+  struct Geometry;  // what eval and pdf derive from the directions alone
+  // wi towards the viewer and wo towards the light, as Mitsuba names them.
+  static Geometry geometry(const Vec3& wi, const Vec3& wo);
+  // Mitsuba's eval (f |cos wo|) and pdf.
+  Color eval_m(const Geometry& g, const Local& l) const;
+  float pdf_m(const Geometry& g, const Local& l) const;
   PrincipledThinSettings s_;
 };
 

@@ -6,15 +6,8 @@
 
 namespace caustica {
 
-namespace {
-float channel_mean(const ColorParam& c, const Vec2& uv) {
-  const Color v = c.at(uv);
-  return (v.x + v.y + v.z) / 3.0f;
-}
-}  // namespace
-
 Vec2 Ward::alphas(const ShadingPoint& sp) const {
-  return Vec2(std::max(1e-4f, channel_mean(alpha_u_, sp.uv)), std::max(1e-4f, channel_mean(alpha_v_, sp.uv)));
+  return Vec2(std::max(1e-4f, average(alpha_u_.at(sp.uv))), std::max(1e-4f, average(alpha_v_.at(sp.uv))));
 }
 
 Color Ward::eval(const Vec3& wo_in, const Vec3& wi_in, const ShadingPoint& sp) const {
@@ -89,7 +82,7 @@ uint32_t Ward::flags() const {
 
 float Ward::glossy_roughness() const {
   if (alpha_u_.texture || alpha_v_.texture) return 0.0f;
-  return std::min(channel_mean(alpha_u_, Vec2(0.0f)), channel_mean(alpha_v_, Vec2(0.0f)));
+  return std::min(average(alpha_u_.value), average(alpha_v_.value));
 }
 
 std::unique_ptr<Bsdf> Ward::create(const Params& p) {
