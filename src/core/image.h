@@ -1,5 +1,6 @@
 // Linear RGB float images in memory (their files: io/image_io.h).
 #pragma once
+#include <cmath>
 #include <vector>
 #include "core/math.h"
 
@@ -17,5 +18,7 @@ struct Image {
 
 // The sRGB transfer curve, clamped to [0, 1].
 float linear_to_srgb(float v);
+// Its inverse: an sRGB-encoded value in [0, 1] to linear.
+inline float srgb_to_linear(float v) { return v <= 0.04045f ? v / 12.92f : std::pow((v + 0.055f) / 1.055f, 2.4f); }
 
 }  // namespace caustica

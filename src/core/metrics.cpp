@@ -107,8 +107,7 @@ Color false_colour(float t) {
   const float f = x - float(i);
   // The stops are sRGB colours: return them linear so that PNG output encodes them back.
   const Color c = stops[i] * (1.0f - f) + stops[i + 1] * f;
-  auto lin = [](float v) { return v <= 0.04045f ? v / 12.92f : std::pow((v + 0.055f) / 1.055f, 2.4f); };
-  return Color(lin(c.r), lin(c.g), lin(c.b));
+  return Color(srgb_to_linear(c.r), srgb_to_linear(c.g), srgb_to_linear(c.b));
 }
 
 Image error_map(const Image& image, const Image& reference) {

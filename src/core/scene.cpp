@@ -87,6 +87,7 @@ bool Scene::intersect_opaque(const Ray& ray, SurfaceHit& hit) const {
   // bump-mapped normals.
   Vec3 dpdu(0.0f), dpdv(0.0f), tangent(0.0f);
   hit.sp.uv = Vec2(0.0f);
+  hit.sp.mesh = nullptr;
   if (prim.kind == ShapeKind::Sphere) {
     // u = phi / 2 pi, v = theta / pi (sphere_uv).
     const Vec3 d = (hit.p - prim.p0) / prim.radius();
@@ -98,6 +99,11 @@ bool Scene::intersect_opaque(const Ray& ray, SurfaceHit& hit) const {
   } else if (prim.attributes != kNoAttributes) {
     const TriangleAttributes& a = attributes[prim.attributes];
     const Vec3 b = barycentrics(prim, hit.p);
+    if (a.mesh) {
+      hit.sp.mesh = a.mesh;
+      hit.sp.triangle = a.triangle;
+      hit.sp.bary = b;
+    }
     if (a.has_uvs) {
       hit.sp.uv = b.x * a.uv[0] + b.y * a.uv[1] + b.z * a.uv[2];
       const Vec2 duv1 = a.uv[1] - a.uv[0], duv2 = a.uv[2] - a.uv[0];

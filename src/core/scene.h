@@ -54,6 +54,7 @@ class Scene {
   std::vector<std::unique_ptr<Bsdf>> materials;
   std::vector<std::unique_ptr<Texture>> textures;  // read by the materials
   std::vector<TriangleAttributes> attributes;      // indexed by Primitive::attributes
+  std::vector<std::unique_ptr<MeshAttributes>> mesh_attributes;  // pointed to by attributes
   std::vector<std::string> material_names;
   std::vector<std::unique_ptr<Light>> lights;
   std::vector<ObjectInfo> objects;
@@ -72,7 +73,7 @@ class Scene {
   // Radiance that the surface at `hit` emits towards local direction wo (its area light's, front
   // side only).
   Color emitted(const SurfaceHit& hit, const Vec3& wo_local) const {
-    return hit.light >= 0 && wo_local.z > 0 ? lights[size_t(hit.light)]->surface_radiance(hit.sp.uv) : Color(0.0f);
+    return hit.light >= 0 && wo_local.z > 0 ? lights[size_t(hit.light)]->surface_radiance(hit.sp) : Color(0.0f);
   }
   // Radiance arriving along a ray that leaves the scene in direction dir (environment lights).
   Color escaped(const Vec3& dir) const;

@@ -80,11 +80,16 @@ Vec2 sphere_uv(const Vec3& d) {
   return Vec2(u, std::acos(std::clamp(d.z, -1.0f, 1.0f)) * kInvPi);
 }
 
-Vec2 surface_uv(const Primitive& prim, const TriangleAttributes* a, const Vec3& p) {
+TexturePoint surface_point(const Primitive& prim, const TriangleAttributes* a, const Vec3& p) {
   if (prim.kind == ShapeKind::Sphere) return sphere_uv(glm::normalize(p - prim.p0));
-  if (!a || !a->has_uvs) return Vec2(0.0f);
+  TexturePoint tp;
+  if (!a || (!a->has_uvs && !a->mesh)) return tp;
   const Vec3 b = barycentrics(prim, p);
-  return b.x * a->uv[0] + b.y * a->uv[1] + b.z * a->uv[2];
+  if (a->has_uvs) tp.uv = b.x * a->uv[0] + b.y * a->uv[1] + b.z * a->uv[2];
+  tp.mesh = a->mesh;
+  tp.triangle = a->triangle;
+  tp.bary = b;
+  return tp;
 }
 
 bool intersect_triangle(const Ray& ray, const Vec3& p0, const Vec3& p1, const Vec3& p2,

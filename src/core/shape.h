@@ -1,7 +1,10 @@
 // Geometric primitives (triangles, spheres), their bounds and ray intersection.
 #pragma once
 #include <cstdint>
+#include <string>
+#include <vector>
 #include "core/math.h"
+#include "core/textures/texture.h"
 
 namespace caustica {
 
@@ -22,12 +25,40 @@ struct Bounds {
 enum class ShapeKind : uint8_t { Triangle, Sphere };
 constexpr uint32_t kNoAttributes = 0xffffffffu;
 
+// Values a mesh file gives per vertex or per face besides positions, normals and UVs (PLY's
+// colours and other properties, .serialized's vertex colours), named as Mitsuba names them
+// ("vertex_color", "face_id"), for the mesh_attribute texture. Stored per triangle: a vertex
+// attribute's three corners, a face attribute's one value (a polygon's fan triangles share it).
+struct MeshAttribute {
+  std::string name;
+  int channels = 3;  // 1 (a grey value) or 3
+  bool per_face = false;
+  std::vector<Color> values;  // 3 per triangle (vertex_), or 1 (face_)
+  // The value at barycentrics b on the mesh's triangle t.
+  Color at(uint32_t t, const Vec3& b) const {
+    if (per_face) return values[t];
+    return b.x * values[3 * size_t(t)] + b.y * values[3 * size_t(t) + 1] + b.z * values[3 * size_t(t) + 2];
+  }
+};
+struct MeshAttributes {
+  std::vector<MeshAttribute> list;
+  const MeshAttribute* find(const std::string& name) const {
+    for (const MeshAttribute& a : list) {
+      if (a.name == name) return &a;
+    }
+    return nullptr;
+  }
+};
+
 // Per-corner shading data of a triangle: interpolated vertex normals (smooth shading) and
-// texture coordinates (Mitsuba's convention, (0, 0) at the image's top-left).
+// texture coordinates (Mitsuba's convention, (0, 0) at the image's top-left); the attributes of
+// the mesh it belongs to (owned by the scene) and its index there.
 struct TriangleAttributes {
   Vec3 n[3]{Vec3(0.0f), Vec3(0.0f), Vec3(0.0f)};
   Vec2 uv[3]{Vec2(0.0f), Vec2(0.0f), Vec2(0.0f)};
   bool has_normals = false, has_uvs = false;
+  const MeshAttributes* mesh = nullptr;
+  uint32_t triangle = 0;
 };
 
 // A triangle (p0, p1, p2) or a sphere (centre p0, radius p1.x). `flip` reverses the normal.
@@ -59,9 +90,10 @@ Vec3 barycentrics(const Primitive& t, const Vec3& p);
 // Mitsuba's sphere parameterisation at unit direction d from the centre: u = phi / 2 pi around
 // z, v = theta / pi from +z.
 Vec2 sphere_uv(const Vec3& d);
-// Texture coordinates at a point p on a primitive: a sphere's from its direction, a triangle's
-// interpolated from its corners' (zero without attributes or UVs).
-Vec2 surface_uv(const Primitive& prim, const TriangleAttributes* attributes, const Vec3& p);
+// Where textures are looked up at a point p on a primitive: a sphere's (u, v) from its
+// direction, a triangle's interpolated from its corners' (zero without attributes or UVs), and
+// a mesh triangle's attributes with p's barycentrics.
+TexturePoint surface_point(const Primitive& prim, const TriangleAttributes* attributes, const Vec3& p);
 
 // Moller-Trumbore (1997). Returns true and t, barycentrics (u, v) for a hit with 0 < t < tmax.
 bool intersect_triangle(const Ray& ray, const Vec3& p0, const Vec3& p1, const Vec3& p2,

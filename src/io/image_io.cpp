@@ -128,7 +128,7 @@ Image read_image(const std::string& path) {
   for (size_t i = 0; i < img.pixels.size(); ++i) {
     for (int c = 0; c < 3; ++c) {
       float v = data[i * spec.nchannels + std::min(c, spec.nchannels - 1)];
-      if (srgb) v = v <= 0.04045f ? v / 12.92f : std::pow((v + 0.055f) / 1.055f, 2.4f);
+      if (srgb) v = srgb_to_linear(v);
       img.pixels[i][c] = v;
     }
   }

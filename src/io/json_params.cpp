@@ -110,6 +110,7 @@ ColorParam JsonParams::texture(const std::string& key, const Color& fallback) co
   if (!has(key)) return fallback;
   if (!m_[key].is_object()) return r_.color(m_[key], at(key));
   ctx_.textures.push_back(read_texture(ctx_, m_[key], at(key)));
+  if (ctx_.texture_places) (*ctx_.texture_places)[ctx_.textures.back().get()] = at(key);
   return ColorParam(ctx_.textures.back().get());
 }
 

@@ -1,6 +1,7 @@
 // A plugin's JSON block as core's Params (core/params.h), and the check of a block against its
 // family's registry row: every error names the file and the JSON pointer.
 #pragma once
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -22,6 +23,8 @@ struct PluginContext {
   std::vector<std::unique_ptr<Bsdf>>& nested;
   std::vector<std::unique_ptr<Texture>>& textures;
   std::vector<std::string>& warnings;
+  // Where each texture block was read (for errors found after reading), when given.
+  std::map<const Texture*, std::string>* texture_places = nullptr;
 };
 
 class JsonParams final : public Params {

@@ -100,6 +100,9 @@ struct Loader {
   glm::mat4 read_affine(const json& m, const std::string& p);
 
   MeshData read_mesh(const json& j, const std::string& p);
+  // A mesh_attribute texture naming an attribute no mesh carries is an error at its place.
+  void check_mesh_attribute_textures();
+  std::map<const Texture*, std::string> texture_places_{};
 
   void read_light(const json& j, const std::string& p);
   // A light's or an emissive object's "sampling_weight" (positive).

@@ -162,6 +162,15 @@ MeshData Loader::read_mesh(const json& j, const std::string& p) {
       if (has_matrix) n = normal_matrix * n;
     }
   }
+  // The scene keeps the mesh's attributes; its triangles point at them.
+  if (!mesh.extra.list.empty()) {
+    scene().mesh_attributes.push_back(std::make_unique<MeshAttributes>(std::move(mesh.extra)));
+    mesh.attributes.resize(mesh.tris.size());
+    for (size_t i = 0; i < mesh.tris.size(); ++i) {
+      mesh.attributes[i].mesh = scene().mesh_attributes.back().get();
+      mesh.attributes[i].triangle = uint32_t(i);
+    }
+  }
   return mesh;
 }
 

@@ -3,9 +3,11 @@
 #include "io/scene_loader.h"
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <sstream>
 #include "core/bsdf/registry.h"
 #include "core/lights/registry.h"
+#include "core/textures/mesh_attribute.h"
 #include "core/textures/registry.h"
 #include "io/bsdf_reader.h"
 #include "io/json_params.h"
@@ -29,11 +31,30 @@ void Loader::load(const json& doc) {
     for (size_t i = 0; i < lights.size(); ++i) read_light(lights[i], child("/lights", i));
   }
   if (prims.empty()) r.fail("/objects", "the scene has no geometry");
+  check_mesh_attribute_textures();
   if (scene().lights.empty()) {
     r.warn("", "the scene has no lights (no emissive material, no point light): the image will be black",
            out.warnings);
   }
   scene().build(std::move(prims));
+}
+
+void Loader::check_mesh_attribute_textures() {
+  std::set<std::string> carried;
+  for (const auto& m : scene().mesh_attributes) {
+    for (const MeshAttribute& a : m->list) carried.insert(a.name);
+  }
+  for (const auto& t : scene().textures) {
+    const auto* m = dynamic_cast<const MeshAttributeTexture*>(t.get());
+    if (!m || carried.count(m->name())) continue;
+    std::string known;
+    for (const std::string& n : carried) known += (known.empty() ? "" : ", ") + n;
+    r.fail(child(texture_places_[t.get()], "name"),
+           "no mesh in the scene carries the attribute \"" + m->name() + "\" (" +
+               (known.empty() ? std::string("no mesh carries any: they come from PLY vertex or face properties")
+                              : "the meshes carry: " + known) +
+               ")");
+  }
 }
 
 void Loader::read_integrator(const json& j, const std::string& p) {
@@ -64,7 +85,7 @@ void Loader::read_materials(const json& j, const std::string& p) {
 
 uint32_t Loader::add_material(const std::string& name, const json& m, const std::string& p) {
   std::vector<std::unique_ptr<Bsdf>> nested;
-  const PluginContext ctx{r, base_dir, nested, scene().textures, out.warnings};
+  const PluginContext ctx{r, base_dir, nested, scene().textures, out.warnings, &texture_places_};
   std::unique_ptr<Bsdf> mat = read_bsdf(ctx, m, p);
   for (auto& n : nested) {
     scene().materials.push_back(std::move(n));
@@ -103,7 +124,7 @@ void Loader::read_light(const json& j, const std::string& p) {
   if (j.contains("name")) r.string(j["name"], child(p, "name"));
   // Lights read no nested BSDFs: `nested` stays empty (and may die with this call).
   std::vector<std::unique_ptr<Bsdf>> nested;
-  const PluginContext ctx{r, base_dir, nested, scene().textures, out.warnings};
+  const PluginContext ctx{r, base_dir, nested, scene().textures, out.warnings, &texture_places_};
   scene().lights.push_back(row.create(JsonParams(ctx, j, p)));
   if (j.contains("sampling_weight")) scene().lights.back()->set_sampling_weight(sampling_weight(j, p));
 }

@@ -121,7 +121,7 @@ void Loader::add_triangle(std::vector<Primitive>& shapes, const Vec3& a, const V
     return;
   }
   shapes.push_back(Primitive::triangle(a, b, c));
-  if (attributes && (attributes->has_normals || attributes->has_uvs)) {
+  if (attributes && (attributes->has_normals || attributes->has_uvs || attributes->mesh)) {
     shapes.back().attributes = static_cast<uint32_t>(scene().attributes.size());
     scene().attributes.push_back(*attributes);
   }

@@ -97,7 +97,7 @@ std::string binary_ply(const Quad& q) {
 // One shape of a .serialized file: header and zlib stream.
 struct SerializedShape {
   std::string name;
-  std::vector<float> pos, normals, uvs;
+  std::vector<float> pos, normals, uvs, colours;
   std::vector<uint32_t> indices;
   uint64_t vertex_count() const { return pos.size() / 3; }
 };
@@ -116,6 +116,7 @@ std::string serialized_raw(const SerializedShape& s, uint64_t vertex_count, uint
   uint32_t flags = 0x1000;
   if (!s.normals.empty()) flags |= 0x0001;
   if (!s.uvs.empty()) flags |= 0x0002;
+  if (!s.colours.empty()) flags |= 0x0008;
   put<uint32_t>(raw, flags);
   raw += s.name;
   raw += '\0';
@@ -124,6 +125,7 @@ std::string serialized_raw(const SerializedShape& s, uint64_t vertex_count, uint
   for (float f : s.pos) put<float>(raw, f);
   for (float f : s.normals) put<float>(raw, f);
   for (float f : s.uvs) put<float>(raw, f);
+  for (float f : s.colours) put<float>(raw, f);
   for (uint32_t i : s.indices) put<uint32_t>(raw, i);
   return raw;
 }
@@ -357,6 +359,30 @@ TEST_CASE("mesh files: Mitsuba serialized shapes read back exactly and shape_ind
     CHECK_THAT(msg, StartsWith(bad + ":2:"));
     CHECK_THAT(msg, Contains("shape_index 5 is out of range (the file holds 2 shapes)"));
   }
+}
+
+TEST_CASE("mesh files: a serialized shape's vertex colours are the mesh attribute vertex_color", "[mesh]") {
+  test::TempDir dir;
+  const Quad q;
+  SerializedShape quad = quad_shape(q);
+  quad.colours = {0.5f, 0.25f, 0.125f, 1, 0, 0, 0, 1, 0, 2, 3, 4};
+  const MeshData m = read_mesh_file(dir.write("c.serialized", serialized_shape(quad)));
+  check_quad(m, q, true, true, false);  // the colours, between the UVs and the indices, are skipped right
+  REQUIRE(m.extra.list.size() == 1);
+  const MeshAttribute& a = m.extra.list[0];
+  CHECK(a.name == "vertex_color");
+  CHECK(a.channels == 3);
+  CHECK_FALSE(a.per_face);
+  REQUIRE(a.values.size() == 6);
+  for (size_t t = 0; t < 2; ++t) {
+    for (int k = 0; k < 3; ++k) {
+      const size_t v = size_t(q.tris[t][k]);
+      CHECK(a.values[3 * t + size_t(k)] == Color(quad.colours[3 * v], quad.colours[3 * v + 1], quad.colours[3 * v + 2]));
+    }
+  }
+  quad.colours[4] = std::numeric_limits<float>::quiet_NaN();
+  const std::string bad = dir.write("nan.serialized", serialized_shape(quad));
+  CHECK(error_of([&] { read_mesh_file(bad); }) == bad + ": the colour of vertex 1 is not finite");
 }
 
 TEST_CASE("mesh files: a serialized shape is inflated only as far as its counts declare and memory allows", "[mesh]") {

@@ -93,6 +93,12 @@ TEST_CASE("photon: matches the path tracer on Mitsuba 0.6's ward, coating and ro
   check_photon_against_path("scenes/mitsuba/layers.xml", 96, 48, 512, 32, R"({"photons": 50000, "caustic_photons": 50000})", 0.06);
 }
 
+TEST_CASE("photon: matches the path tracer on Mitsuba's mesh_attribute colours and a vertex-coloured light", "[trace][photon][reference]") {
+  // scenes/mitsuba/mesh-attributes.xml (issue 24): vertex and face colours of PLY meshes, and an
+  // area light whose radiance is a vertex colour, which photons and shadow rays both follow.
+  check_photon_against_path("scenes/mitsuba/mesh-attributes.xml", 96, 54, 512, 32, R"({"photons": 50000, "caustic_photons": 50000})", 0.06);
+}
+
 TEST_CASE("photon: caustic centre under a glass sphere matches the path tracer within 10 %", "[trace][photon][caustic]") {
   // A glass ball over a floor under a 2x2 area light; the camera looks straight down at the
   // caustic. The path tracer finds the caustic only by hitting the light through the glass,

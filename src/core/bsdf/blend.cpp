@@ -5,7 +5,7 @@
 namespace caustica {
 
 float BlendBsdf::weight(const ShadingPoint& sp) const {
-  return std::clamp(weight_.texture ? luminance(weight_.texture->eval(sp.uv)) : weight_.value.x, 0.0f, 1.0f);
+  return std::clamp(weight_.texture ? luminance(weight_.texture->eval(sp)) : weight_.value.x, 0.0f, 1.0f);
 }
 
 Color BlendBsdf::eval(const Vec3& wo, const Vec3& wi, const ShadingPoint& sp) const {

@@ -7,6 +7,7 @@
 #include <memory>
 #include <string>
 #include "core/math.h"
+#include "core/textures/texture.h"
 
 namespace caustica {
 
@@ -18,12 +19,11 @@ enum BsdfFlags : uint32_t {
   kBsdfSpecular = 1u << 4,  // a delta lobe: eval and pdf are zero, only sample reaches it
 };
 
-// What a BSDF may vary with over a surface: its texture coordinates (Mitsuba's convention:
-// (0, 0) at the image's top-left), and how the surface moves with them (for bump mapping): dp/du
-// and dp/dv in the local shading frame, world units per unit of u and v (zero where the surface
-// has no texture coordinates).
-struct ShadingPoint {
-  Vec2 uv{0.0f};
+// What a BSDF may vary with over a surface: where its textures are looked up (the texture
+// coordinates, Mitsuba's convention: (0, 0) at the image's top-left; a mesh's attributes), and
+// how the surface moves with (u, v) (for bump mapping): dp/du and dp/dv in the local shading
+// frame, world units per unit of u and v (zero where the surface has no texture coordinates).
+struct ShadingPoint : TexturePoint {
   Vec3 dpdu{0.0f}, dpdv{0.0f};
 };
 

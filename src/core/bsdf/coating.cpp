@@ -51,7 +51,7 @@ float Coating::surface_probability(float cos_o) const {
 
 Color Coating::absorption(const Vec3& a, const Vec3& b, const ShadingPoint& sp) const {
   if (sigma_a_.is_black() || thickness_ == 0.0f) return Color(1.0f);
-  const Color sa = sigma_a_.at(sp.uv);
+  const Color sa = sigma_a_.at(sp);
   const float path = thickness_ * (1.0f / std::abs(a.z) + 1.0f / std::abs(b.z));
   return glm::exp(-sa * path);
 }
@@ -63,7 +63,7 @@ Color Coating::surface_eval(const Vec3& wo_in, const Vec3& wi_in, const ShadingP
   const float d = dist_->D(h);
   if (!(d > 0.0f)) return Color(0.0f);
   const float F = fresnel_dielectric(std::abs(glm::dot(wo, h)), eta_);
-  return specular_.at(sp.uv) * (F * d * dist_->G1(wo) * dist_->G1(wi) / (4.0f * wo.z * wi.z));
+  return specular_.at(sp) * (F * d * dist_->G1(wo) * dist_->G1(wi) / (4.0f * wo.z * wi.z));
 }
 
 float Coating::surface_pdf(const Vec3& wo, const Vec3& wi) const { return dist_ ? reflection_pdf(*dist_, wo, wi) : 0.0f; }
@@ -97,7 +97,7 @@ bool Coating::sample(const Vec3& wo, const Vec2& u, float u_lobe, BsdfSample& s,
   if (u_lobe < ps) {
     if (!dist_) {
       s.wi = reflect_local(wo);
-      s.weight = specular_.at(sp.uv) * (fresnel_dielectric(std::abs(wo.z), eta_) / ps);
+      s.weight = specular_.at(sp) * (fresnel_dielectric(std::abs(wo.z), eta_) / ps);
       s.pdf = 0.0f;
       s.delta = true;
       s.lobe = kBsdfSpecular | kBsdfReflection;
@@ -139,7 +139,7 @@ int Coating::specular_lobes(const Vec3& wo, BsdfSample* out, const ShadingPoint&
   // delta lobes through the layer, as many as fit.
   int n = 0;
   out[n].wi = reflect_local(wo);
-  out[n].weight = specular_.at(sp.uv) * fresnel_dielectric(std::abs(wo.z), eta_);
+  out[n].weight = specular_.at(sp) * fresnel_dielectric(std::abs(wo.z), eta_);
   out[n].pdf = 0.0f;
   out[n].delta = true;
   out[n++].lobe = kBsdfSpecular | kBsdfReflection;
@@ -168,8 +168,8 @@ float Coating::glossy_roughness() const {
 
 Color Coating::albedo(const ShadingPoint& sp) const {
   const float t = transmittance(1.0f);
-  const Color trip = glm::exp(-2.0f * thickness_ * sigma_a_.at(sp.uv));
-  return glm::min(specular_.at(sp.uv) * (1.0f - t) + nested_->albedo(sp) * trip * (t * t), Color(1.0f));
+  const Color trip = glm::exp(-2.0f * thickness_ * sigma_a_.at(sp));
+  return glm::min(specular_.at(sp) * (1.0f - t) + nested_->albedo(sp) * trip * (t * t), Color(1.0f));
 }
 
 namespace {

@@ -26,7 +26,7 @@ class Conductor final : public SpecularBsdf {
       : ior_(ior), specular_(specular_reflectance) {}
   int specular_lobes(const Vec3& wo, BsdfSample* out, const ShadingPoint& sp = {}) const override;
   uint32_t flags() const override { return kBsdfSpecular | kBsdfReflection; }
-  Color albedo(const ShadingPoint& sp = {}) const override { return specular_.at(sp.uv) * ior_.reflectance(1.0f); }
+  Color albedo(const ShadingPoint& sp = {}) const override { return specular_.at(sp) * ior_.reflectance(1.0f); }
 
  private:
   ConductorIor ior_;
@@ -44,7 +44,7 @@ class RoughConductor final : public Bsdf {
   int specular_lobes(const Vec3& wo, BsdfSample* out, const ShadingPoint& sp = {}) const override;  // the smooth limit
   uint32_t flags() const override { return kBsdfGlossy | kBsdfReflection; }
   float glossy_roughness() const override { return rough_.narrowest(); }
-  Color albedo(const ShadingPoint& sp = {}) const override { return specular_.at(sp.uv) * ior_.reflectance(1.0f); }
+  Color albedo(const ShadingPoint& sp = {}) const override { return specular_.at(sp) * ior_.reflectance(1.0f); }
 
  private:
   Conductor smooth() const { return Conductor(ior_, specular_); }

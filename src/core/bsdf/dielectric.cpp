@@ -31,14 +31,14 @@ int Dielectric::specular_lobes(const Vec3& wo, BsdfSample* out, const ShadingPoi
   Vec3 wt;
   if (!refract(wo, wt)) {
     out[0] = delta_sample(reflect_local(wo), 1.0f, kBsdfReflection);
-    out[0].weight *= tint_.reflect.at(sp.uv);
+    out[0].weight *= tint_.reflect.at(sp);
     return 1;
   }
   const float f = reflectance(wo);
   out[0] = delta_sample(reflect_local(wo), f, kBsdfReflection);
   out[1] = delta_sample(wt, 1.0f - f, kBsdfTransmission);
-  out[0].weight *= tint_.reflect.at(sp.uv);
-  out[1].weight *= tint_.transmit.at(sp.uv);
+  out[0].weight *= tint_.reflect.at(sp);
+  out[1].weight *= tint_.transmit.at(sp);
   return 2;
 }
 
@@ -52,8 +52,8 @@ int ThinDielectric::specular_lobes(const Vec3& wo, BsdfSample* out, const Shadin
   const float r = reflectance(std::abs(wo.z));
   out[0] = delta_sample(reflect_local(wo), r, kBsdfReflection);
   out[1] = delta_sample(-wo, 1.0f - r, kBsdfTransmission);
-  out[0].weight *= tint_.reflect.at(sp.uv);
-  out[1].weight *= tint_.transmit.at(sp.uv);
+  out[0].weight *= tint_.reflect.at(sp);
+  out[1].weight *= tint_.transmit.at(sp);
   return 2;
 }
 
@@ -75,12 +75,12 @@ Color RoughDielectric::eval(const Vec3& wo, const Vec3& wi, const ShadingPoint& 
   float etap;
   if (!half_vector(wo, wi, wm, etap)) return Color(0.0f);
   const float F = fresnel_dielectric(std::abs(glm::dot(wo, wm)), wo.z > 0.0f ? eta_ : 1.0f / eta_);
-  const MicrofacetDistribution dist = rough_.at(sp.uv);
+  const MicrofacetDistribution dist = rough_.at(sp);
   const float dg = dist.D(wm) * dist.G(wo, wi);
-  if (wo.z * wi.z > 0.0f) return Color(F * dg / std::abs(4.0f * wo.z * wi.z)) * tint_.reflect.at(sp.uv);
+  if (wo.z * wi.z > 0.0f) return Color(F * dg / std::abs(4.0f * wo.z * wi.z)) * tint_.reflect.at(sp);
   const float denom = glm::dot(wi, wm) + glm::dot(wo, wm) / etap;
   const float ft = (1.0f - F) * dg * std::abs(glm::dot(wi, wm) * glm::dot(wo, wm) / (denom * denom * wi.z * wo.z));
-  return Color(ft) * tint_.transmit.at(sp.uv);
+  return Color(ft) * tint_.transmit.at(sp);
 }
 
 float RoughDielectric::pdf(const Vec3& wo, const Vec3& wi, const ShadingPoint& sp) const {
@@ -88,7 +88,7 @@ float RoughDielectric::pdf(const Vec3& wo, const Vec3& wi, const ShadingPoint& s
   float etap;
   if (!half_vector(wo, wi, wm, etap)) return 0.0f;
   const float F = fresnel_dielectric(std::abs(glm::dot(wo, wm)), wo.z > 0.0f ? eta_ : 1.0f / eta_);
-  const float pm = rough_.at(sp.uv).pdf(wo, wm);
+  const float pm = rough_.at(sp).pdf(wo, wm);
   if (wo.z * wi.z > 0.0f) return pm / (4.0f * std::abs(glm::dot(wo, wm))) * F;
   const float denom = glm::dot(wi, wm) + glm::dot(wo, wm) / etap;
   return pm * std::abs(glm::dot(wi, wm)) / (denom * denom) * (1.0f - F);
@@ -96,7 +96,7 @@ float RoughDielectric::pdf(const Vec3& wo, const Vec3& wi, const ShadingPoint& s
 
 bool RoughDielectric::sample(const Vec3& wo, const Vec2& u, float u_lobe, BsdfSample& s, const ShadingPoint& sp) const {
   if (wo.z == 0.0f) return false;
-  const Vec3 wm = rough_.at(sp.uv).sample_visible(wo, u);
+  const Vec3 wm = rough_.at(sp).sample_visible(wo, u);
   const float cos_om = glm::dot(wo, wm);
   const float F = fresnel_dielectric(std::abs(cos_om), wo.z > 0.0f ? eta_ : 1.0f / eta_);
   if (u_lobe < F) {

@@ -16,7 +16,7 @@ namespace caustica {
 struct DielectricTint {
   ColorParam reflect{Color(1.0f)}, transmit{Color(1.0f)};
   // The larger scale at uv: what a photon's Russian roulette takes as the surface's albedo.
-  Color albedo(const Vec2& uv) const { return glm::max(reflect.at(uv), transmit.at(uv)); }
+  Color albedo(const TexturePoint& uv) const { return glm::max(reflect.at(uv), transmit.at(uv)); }
 };
 
 class Dielectric final : public SpecularBsdf {
@@ -27,7 +27,7 @@ class Dielectric final : public SpecularBsdf {
   Dielectric(float eta, FresnelModel model, const DielectricTint& tint = {}) : eta_(eta), model_(model), tint_(tint) {}
   int specular_lobes(const Vec3& wo, BsdfSample* out, const ShadingPoint& sp = {}) const override;
   uint32_t flags() const override { return kBsdfSpecular | kBsdfReflection | kBsdfTransmission; }
-  Color albedo(const ShadingPoint& sp = {}) const override { return tint_.albedo(sp.uv); }
+  Color albedo(const ShadingPoint& sp = {}) const override { return tint_.albedo(sp); }
   // Reflectance for local direction wo (either side of the boundary).
   float reflectance(const Vec3& wo) const;
   // Refracted local direction for wo; false under total internal reflection.
@@ -46,7 +46,7 @@ class ThinDielectric final : public SpecularBsdf {
   explicit ThinDielectric(float eta, const DielectricTint& tint = {}) : eta_(eta), tint_(tint) {}
   int specular_lobes(const Vec3& wo, BsdfSample* out, const ShadingPoint& sp = {}) const override;
   uint32_t flags() const override { return kBsdfSpecular | kBsdfReflection | kBsdfTransmission; }
-  Color albedo(const ShadingPoint& sp = {}) const override { return tint_.albedo(sp.uv); }
+  Color albedo(const ShadingPoint& sp = {}) const override { return tint_.albedo(sp); }
   // Reflectance of the pane with all internal reflections: R + T^2 R / (1 - R^2) = 2R / (1 + R).
   float reflectance(float cos_i) const;
 
@@ -68,7 +68,7 @@ class RoughDielectric final : public Bsdf {
   }
   uint32_t flags() const override { return kBsdfGlossy | kBsdfReflection | kBsdfTransmission; }
   float glossy_roughness() const override { return rough_.narrowest(); }
-  Color albedo(const ShadingPoint& sp = {}) const override { return tint_.albedo(sp.uv); }
+  Color albedo(const ShadingPoint& sp = {}) const override { return tint_.albedo(sp); }
 
  private:
   // The half vector of (wo, wi), facing +z, and the relative index across it; false when the

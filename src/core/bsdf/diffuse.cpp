@@ -6,7 +6,7 @@
 namespace caustica {
 
 Color Lambertian::eval(const Vec3& wo, const Vec3& wi, const ShadingPoint& sp) const {
-  return wo.z * wi.z > 0.0f ? albedo_.at(sp.uv) * kInvPi : Color(0.0f);
+  return wo.z * wi.z > 0.0f ? albedo_.at(sp) * kInvPi : Color(0.0f);
 }
 
 float Lambertian::pdf(const Vec3& wo, const Vec3& wi, const ShadingPoint&) const {
@@ -19,7 +19,7 @@ bool Lambertian::sample(const Vec3& wo, const Vec2& u, float, BsdfSample& s, con
   if (wo.z < 0.0f) s.wi.z = -s.wi.z;  // two-sided: scatter back to the side wo is on
   s.pdf = std::abs(s.wi.z) * kInvPi;
   if (s.pdf <= 0.0f) return false;
-  s.weight = albedo_.at(sp.uv);  // (rho/pi) cos / (cos/pi)
+  s.weight = albedo_.at(sp);  // (rho/pi) cos / (cos/pi)
   s.delta = false;
   s.lobe = kBsdfDiffuse | kBsdfReflection;
   return true;

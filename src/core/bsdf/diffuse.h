@@ -16,7 +16,7 @@ class Lambertian final : public Bsdf {
   float pdf(const Vec3& wo, const Vec3& wi, const ShadingPoint& sp = {}) const override;
   bool sample(const Vec3& wo, const Vec2& u, float u_lobe, BsdfSample& s, const ShadingPoint& sp = {}) const override;
   uint32_t flags() const override { return kBsdfDiffuse | kBsdfReflection; }
-  Color albedo(const ShadingPoint& sp = {}) const override { return albedo_.at(sp.uv); }
+  Color albedo(const ShadingPoint& sp = {}) const override { return albedo_.at(sp); }
 
  private:
   ColorParam albedo_;

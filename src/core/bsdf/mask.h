@@ -28,7 +28,7 @@ class Mask final : public Bsdf {
   bool has_mask() const override { return true; }
   // A masked null surface (or mask) lets through what either lets through.
   float opacity(const ShadingPoint& sp = {}) const override {
-    return std::clamp(average(opacity_.at(sp.uv)), 0.0f, 1.0f) * nested_->opacity(sp);
+    return std::clamp(average(opacity_.at(sp)), 0.0f, 1.0f) * nested_->opacity(sp);
   }
 
  private:

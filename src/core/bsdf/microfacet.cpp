@@ -154,7 +154,7 @@ Roughness::Roughness(MicrofacetType type, const ColorParam& alpha_u, const Color
       alpha_v_(alpha_v),
       textured_(alpha_u.texture || alpha_v.texture) {}
 
-MicrofacetDistribution Roughness::at(const Vec2& uv) const {
+MicrofacetDistribution Roughness::at(const TexturePoint& uv) const {
   if (!textured_) return fixed_;
   auto alpha = [&](const ColorParam& a) {
     return clamp_alpha(a.texture ? luminance(a.texture->eval(uv)) : a.value.x);

@@ -63,7 +63,7 @@ class Roughness {
  public:
   Roughness(const MicrofacetDistribution& d) : fixed_(d) {}  // NOLINT: constant alphas convert implicitly
   Roughness(MicrofacetType type, const ColorParam& alpha_u, const ColorParam& alpha_v);
-  MicrofacetDistribution at(const Vec2& uv) const;
+  MicrofacetDistribution at(const TexturePoint& uv) const;
   bool textured() const { return textured_; }
   // The narrower alpha where they are constant; 0 (the narrow case) where a texture may make
   // them anything.

@@ -4,7 +4,7 @@
 namespace caustica {
 
 Frame NormalMap::frame(const ShadingPoint& sp) const {
-  const Vec3 n = 2.0f * Vec3(normals_.at(sp.uv)) - Vec3(1.0f);
+  const Vec3 n = 2.0f * Vec3(normals_.at(sp)) - Vec3(1.0f);
   const float len = glm::length(n);
   if (!(len > 1e-6f) || !std::isfinite(len)) return Frame();
   Frame f;

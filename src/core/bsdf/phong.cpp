@@ -17,7 +17,7 @@ uint32_t Phong::flags() const {
 }
 
 float Phong::specular_probability(const ShadingPoint& sp) const {
-  const float d = average(kd_.at(sp.uv)), s = average(ks_.at(sp.uv));
+  const float d = average(kd_.at(sp)), s = average(ks_.at(sp));
   return d + s > 0.0f ? s / (d + s) : 0.0f;
 }
 
@@ -25,8 +25,8 @@ Color Phong::eval(const Vec3& wo_in, const Vec3& wi_in, const ShadingPoint& sp) 
   if (wo_in.z * wi_in.z <= 0.0f) return Color(0.0f);
   const Vec3 wo = wo_in.z < 0 ? flip_z(wo_in) : wo_in, wi = wo_in.z < 0 ? flip_z(wi_in) : wi_in;
   const float cos_a = glm::dot(reflect_local(wo), wi);
-  Color f = kd_.at(sp.uv) * kInvPi;
-  if (cos_a > 0.0f) f += ks_.at(sp.uv) * ((exponent_ + 2.0f) / (2.0f * kPi) * std::pow(cos_a, exponent_));
+  Color f = kd_.at(sp) * kInvPi;
+  if (cos_a > 0.0f) f += ks_.at(sp) * ((exponent_ + 2.0f) / (2.0f * kPi) * std::pow(cos_a, exponent_));
   return f;
 }
 
@@ -41,7 +41,7 @@ float Phong::pdf(const Vec3& wo_in, const Vec3& wi_in, const ShadingPoint& sp) c
 
 bool Phong::sample(const Vec3& wo_in, const Vec2& u, float u_lobe, BsdfSample& s, const ShadingPoint& sp) const {
   const float p = specular_probability(sp);
-  if (wo_in.z == 0.0f || p + average(kd_.at(sp.uv)) <= 0.0f) return false;
+  if (wo_in.z == 0.0f || p + average(kd_.at(sp)) <= 0.0f) return false;
   const bool below = wo_in.z < 0;
   const Vec3 wo = below ? flip_z(wo_in) : wo_in;
   const bool glossy = u_lobe < p;

@@ -18,7 +18,7 @@ class Phong final : public Bsdf {
   uint32_t flags() const override;
   // The Beckmann alpha of equal highlight width, sqrt(2 / (n + 2)) (Walter et al. 2007, eq. 33).
   float glossy_roughness() const override { return std::sqrt(2.0f / (exponent_ + 2.0f)); }
-  Color albedo(const ShadingPoint& sp = {}) const override { return kd_.at(sp.uv) + ks_.at(sp.uv); }
+  Color albedo(const ShadingPoint& sp = {}) const override { return kd_.at(sp) + ks_.at(sp); }
 
  private:
   float specular_probability(const ShadingPoint& sp) const;  // of sampling the specular lobe

@@ -76,13 +76,13 @@ float Plastic::coat_reflectance(float cos_theta) const {
 
 float Plastic::specular_probability(float cos_o, const ShadingPoint& sp) const {
   // The coat's share by its reflectance and tint against the transmitted diffuse part.
-  const float s = coat_reflectance(cos_o) * average(specular_.at(sp.uv));
-  const float d = (1.0f - coat_reflectance(cos_o)) * average(diffuse_.at(sp.uv));
+  const float s = coat_reflectance(cos_o) * average(specular_.at(sp));
+  const float d = (1.0f - coat_reflectance(cos_o)) * average(diffuse_.at(sp));
   return s + d > 0.0f ? s / (s + d) : 0.0f;
 }
 
 Color Plastic::diffuse_eval(const Vec3& wo, const Vec3& wi, const ShadingPoint& sp) const {
-  const Color rho = diffuse_.at(sp.uv);
+  const Color rho = diffuse_.at(sp);
   if (dist_) {
     // Mitsuba's roughplastic: rho / (1 - F_dr_int) (nonlinear: 1 - rho F_dr_int) / (pi eta^2)
     // times the rough coat's transmittance on the way in and out, with the rough coat's own
@@ -102,7 +102,7 @@ Color Plastic::coat_eval(const Vec3& wo, const Vec3& wi, const ShadingPoint& sp)
   const Vec3 h = glm::normalize(wo + wi);
   const float d = dist_->D(h);
   if (d <= 0.0f) return Color(0.0f);
-  return specular_.at(sp.uv) * (fresnel_dielectric(glm::dot(wo, h), eta_) * d * dist_->G(wo, wi) / (4.0f * wo.z * wi.z));
+  return specular_.at(sp) * (fresnel_dielectric(glm::dot(wo, h), eta_) * d * dist_->G(wo, wi) / (4.0f * wo.z * wi.z));
 }
 
 float Plastic::coat_pdf(const Vec3& wo, const Vec3& wi) const {
@@ -133,7 +133,7 @@ bool Plastic::sample(const Vec3& wo_in, const Vec2& u, float u_lobe, BsdfSample&
   if (u_lobe < p && !dist_) {
     // The smooth coat: a delta lobe chosen with probability p.
     s.wi = reflect_local(wo);
-    s.weight = specular_.at(sp.uv) * (coat_reflectance(wo.z) / p);
+    s.weight = specular_.at(sp) * (coat_reflectance(wo.z) / p);
     s.pdf = 0.0f;
     s.delta = true;
     s.lobe = kBsdfSpecular | kBsdfReflection;
@@ -149,7 +149,7 @@ int Plastic::specular_lobes(const Vec3& wo, BsdfSample* out, const ShadingPoint&
   // The coat's mirror reflection (for a rough coat, its smooth limit).
   if (wo.z == 0.0f) return 0;
   out->wi = reflect_local(wo);
-  out->weight = specular_.at(sp.uv) * fresnel_dielectric(std::abs(wo.z), eta_);
+  out->weight = specular_.at(sp) * fresnel_dielectric(std::abs(wo.z), eta_);
   out->pdf = 0.0f;
   out->delta = true;
   out->lobe = kBsdfSpecular | kBsdfReflection;
@@ -158,7 +158,7 @@ int Plastic::specular_lobes(const Vec3& wo, BsdfSample* out, const ShadingPoint&
 
 Color Plastic::albedo(const ShadingPoint& sp) const {
   const float f = coat_reflectance(1.0f);
-  return specular_.at(sp.uv) * f + diffuse_.at(sp.uv) * (1.0f - f);
+  return specular_.at(sp) * f + diffuse_.at(sp) * (1.0f - f);
 }
 
 namespace {

@@ -38,7 +38,7 @@ struct Principled::Local {
 };
 
 Principled::Local Principled::at(const ShadingPoint& sp) const {
-  const Vec2& uv = sp.uv;
+  const TexturePoint& uv = sp;
   auto value = [&](const Param& p) { return p.has ? p.at(uv) : 0.0f; };
   const float r = s_.roughness.at(uv);
   Local l{s_.base_color.at(uv), Color(1.0f), r, value(s_.metallic), value(s_.spec_trans), value(s_.spec_tint),

@@ -17,7 +17,7 @@ namespace caustica::principled {
 struct Param {
   ColorParam value;
   bool has = false;
-  float at(const Vec2& uv) const { return value.texture ? luminance(value.texture->eval(uv)) : value.value.x; }
+  float at(const TexturePoint& uv) const { return value.texture ? luminance(value.texture->eval(uv)) : value.value.x; }
 };
 // key as a number or a texture, default `fallback`; values outside [lo, hi] are refused
 // where they are numbers (texture values are used as they come).

@@ -12,7 +12,7 @@ struct PrincipledThin::Local {
 };
 
 PrincipledThin::Local PrincipledThin::at(const ShadingPoint& sp) const {
-  const Vec2& uv = sp.uv;
+  const TexturePoint& uv = sp;
   auto value = [&](const Param& p) { return p.has ? p.at(uv) : 0.0f; };
   const float r = s_.roughness.at(uv), aniso = value(s_.anisotropic), eta = s_.eta.at(uv);
   Local l{s_.base_color.at(uv), Color(1.0f), r, value(s_.spec_trans), value(s_.spec_tint), value(s_.sheen),

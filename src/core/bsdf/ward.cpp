@@ -7,7 +7,7 @@
 namespace caustica {
 
 Vec2 Ward::alphas(const ShadingPoint& sp) const {
-  return Vec2(std::max(1e-4f, average(alpha_u_.at(sp.uv))), std::max(1e-4f, average(alpha_v_.at(sp.uv))));
+  return Vec2(std::max(1e-4f, average(alpha_u_.at(sp))), std::max(1e-4f, average(alpha_v_.at(sp))));
 }
 
 Color Ward::eval(const Vec3& wo_in, const Vec3& wi_in, const ShadingPoint& sp) const {
@@ -28,7 +28,7 @@ Color Ward::eval(const Vec3& wo_in, const Vec3& wi_in, const ShadingPoint& sp) c
   }
   float fs = norm * e;
   if (!(fs > 1e-10f) || !std::isfinite(fs)) fs = 0.0f;
-  return specular_.at(sp.uv) * fs + diffuse_.at(sp.uv) * kInvPi;
+  return specular_.at(sp) * fs + diffuse_.at(sp) * kInvPi;
 }
 
 float Ward::pdf(const Vec3& wo_in, const Vec3& wi_in, const ShadingPoint& sp) const {

@@ -25,7 +25,7 @@ class Ward final : public Bsdf {
   bool sample(const Vec3& wo, const Vec2& u, float u_lobe, BsdfSample& s, const ShadingPoint& sp = {}) const override;
   uint32_t flags() const override;
   float glossy_roughness() const override;
-  Color albedo(const ShadingPoint& sp = {}) const override { return specular_.at(sp.uv) + diffuse_.at(sp.uv); }
+  Color albedo(const ShadingPoint& sp = {}) const override { return specular_.at(sp) + diffuse_.at(sp); }
 
  private:
   // The alphas at a shading point (a texture's channel mean, as Mitsuba's average()).

@@ -25,7 +25,7 @@ AreaLight::AreaLight(std::vector<Primitive> shapes, const ColorParam& radiance,
   for (int j = 0; j < kGrid; ++j) {
     for (int i = 0; i < kGrid; ++i) {
       Vec3 n;
-      Vec2 uv;
+      TexturePoint uv;
       sample_point(Vec2((float(i) + 0.5f) / kGrid, (float(j) + 0.5f) / kGrid), n, uv);
       sum += glm::dvec3(radiance_.at(uv));
     }
@@ -33,22 +33,22 @@ AreaLight::AreaLight(std::vector<Primitive> shapes, const ColorParam& radiance,
   mean_radiance_ = Color(sum / double(kGrid * kGrid));
 }
 
-Vec3 AreaLight::sample_point(Vec2 u, Vec3& n, Vec2& uv) const {
+Vec3 AreaLight::sample_point(Vec2 u, Vec3& n, TexturePoint& at) const {
   const size_t i = by_area_.sample_remap(u.x);
   const Vec3 p = shapes_[i].sample_point(u, &n);
-  uv = radiance_.texture ? surface_uv(shapes_[i], &uvs_[i], p) : Vec2(0.0f);
+  at = radiance_.texture ? surface_point(shapes_[i], &uvs_[i], p) : TexturePoint();
   return p;
 }
 
 LightPoint AreaLight::sample_origin(const Vec2& u) const {
   LightPoint o;
-  o.p = sample_point(u, o.n, o.uv);
+  o.p = sample_point(u, o.n, o.at);
   o.pdf = 1.0f / area_;
   return o;
 }
 
 bool AreaLight::sample_li(const Vec3& x, const Vec2& u, LightSample& s) const {
-  Vec2 uv;
+  TexturePoint uv;
   s.p = sample_point(u, s.n, uv);
   const Vec3 d = s.p - x;
   const float dist2 = glm::dot(d, d);
@@ -71,7 +71,7 @@ float AreaLight::pdf_li(const Vec3& x, const Vec3& y, const Vec3& ny) const {
 
 EmittedPhoton AreaLight::sample_emission(const Vec2& u_pos, const Vec2& u_dir) const {
   EmittedPhoton e;
-  Vec2 uv;
+  TexturePoint uv;
   e.origin = sample_point(u_pos, e.normal, uv);
   e.dir = Frame(e.normal).to_world(sample_cosine_hemisphere(u_dir));
   e.flux = kPi * area_ * radiance_.at(uv);  // Le cos / ((1/A) (cos/pi))

@@ -11,15 +11,15 @@ namespace caustica {
 
 class AreaLight final : public Light {
  public:
-  // `attributes`: the scene's per-triangle UVs, which a textured Le is looked up with (the
-  // shapes' Primitive::attributes index them).
+  // `attributes`: the scene's per-triangle UVs and mesh attributes, which a textured Le is
+  // looked up with (the shapes' Primitive::attributes index them).
   AreaLight(std::vector<Primitive> shapes, const ColorParam& radiance,
             const std::vector<TriangleAttributes>& attributes = {});
   bool sample_li(const Vec3& x, const Vec2& u, LightSample& s) const override;
   EmittedPhoton sample_emission(const Vec2& u_pos, const Vec2& u_dir) const override;
   LightPoint sample_origin(const Vec2& u) const override;
   Color emitted_towards(const LightPoint& at, const Vec3& dir) const override {
-    return radiance_.at(at.uv) * std::max(0.0f, glm::dot(at.n, dir));
+    return radiance_.at(at.at) * std::max(0.0f, glm::dot(at.n, dir));
   }
   // pi A times Le averaged over the surface (by area, for a texture).
   Color power() const override { return kPi * area_ * mean_radiance_; }
@@ -27,12 +27,12 @@ class AreaLight final : public Light {
   Bounds bounds() const override;
   float pdf_li(const Vec3& x, const Vec3& y, const Vec3& ny) const override;
   float area() const { return area_; }
-  Color surface_radiance(const Vec2& uv = Vec2(0.0f)) const override { return radiance_.at(uv); }
+  Color surface_radiance(const TexturePoint& at = {}) const override { return radiance_.at(at); }
   bool textured() const { return radiance_.texture != nullptr; }
 
  private:
-  // A point uniformly by area, with its normal and texture coordinates.
-  Vec3 sample_point(Vec2 u, Vec3& n, Vec2& uv) const;
+  // A point uniformly by area, with its normal and where its texture is looked up.
+  Vec3 sample_point(Vec2 u, Vec3& n, TexturePoint& at) const;
   std::vector<Primitive> shapes_;
   std::vector<TriangleAttributes> uvs_;  // by shape, for a textured Le (else empty)
   Distribution1D by_area_;

@@ -25,7 +25,7 @@ struct LightPoint {
   Vec3 p{0.0f};
   Vec3 n{0.0f};
   float pdf = 0;
-  Vec2 uv{0.0f};
+  TexturePoint at;  // where a textured emission is looked up
 };
 
 // A photon leaving a light.
@@ -46,9 +46,9 @@ class Light {
   // Radiant intensity per unit area (Le cos) or per light (I) leaving `at` along dir.
   virtual Color emitted_towards(const LightPoint& at, const Vec3& dir) const = 0;
   virtual Color power() const = 0;
-  // The radiance that an emitting surface sends out of its front side at texture coordinates uv
-  // (area lights; zero else).
-  virtual Color surface_radiance(const Vec2& /*uv*/ = Vec2(0.0f)) const { return Color(0.0f); }
+  // The radiance that an emitting surface sends out of its front side at a point (its texture
+  // coordinates and mesh attributes: area lights; zero else).
+  virtual Color surface_radiance(const TexturePoint& /*at*/ = {}) const { return Color(0.0f); }
   virtual bool is_delta() const = 0;
   virtual Bounds bounds() const = 0;
   // Solid-angle density with which sample_li from x picks the point y (normal ny) on the light;

@@ -48,10 +48,6 @@ void check_texels(const std::string& path, const OIIO::ImageSpec& spec) {
   }
 }
 
-float srgb_to_linear(float c) {
-  return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
-}
-
 // d srgb_to_linear / dc.
 float srgb_to_linear_slope(float c) {
   return c <= 0.04045f ? 1.0f / 12.92f : 2.4f / 1.055f * std::pow((c + 0.055f) / 1.055f, 1.4f);
@@ -111,9 +107,9 @@ bool BitmapTexture::lookup(const Vec2& st, TextureFilter filter, Color& c, Color
   return true;
 }
 
-Color BitmapTexture::eval(const Vec2& uv) const {
+Color BitmapTexture::eval(const TexturePoint& p) const {
   Color c(0.0f);
-  return lookup(to_uv_.apply(uv), filter_, c, nullptr, nullptr) ? c : Color(0.0f);
+  return lookup(to_uv_.apply(p.uv), filter_, c, nullptr, nullptr) ? c : Color(0.0f);
 }
 
 bool BitmapTexture::gradient(const Vec2& uv, Vec2& grad) const {

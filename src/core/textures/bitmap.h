@@ -18,7 +18,7 @@ class BitmapTexture final : public Texture {
   BitmapTexture(const std::string& path, TextureFilter filter, TextureWrap wrap, const UvTransform& to_uv, bool raw);
   // filename, filter_type (bilinear, nearest), wrap_mode (repeat, mirror, clamp), raw, to_uv.
   static std::unique_ptr<Texture> create(const Params& p);
-  Color eval(const Vec2& uv) const override;
+  Color eval(const TexturePoint& p) const override;
   int channels() const override { return channels_; }
   // The exact derivative of the bilinear lookup (Mitsuba's eval_1_grad), through to_uv; zero
   // for nearest lookups, which are constant between texels.

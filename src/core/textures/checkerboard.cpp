@@ -8,8 +8,8 @@ std::unique_ptr<Texture> CheckerboardTexture::create(const Params& p) {
                                                p.uv_transform("to_uv"));
 }
 
-Color CheckerboardTexture::eval(const Vec2& uv_in) const {
-  const Vec2 uv = to_uv_.apply(uv_in);
+Color CheckerboardTexture::eval(const TexturePoint& p) const {
+  const Vec2 uv = to_uv_.apply(p.uv);
   const float u = uv.x - std::floor(uv.x), v = uv.y - std::floor(uv.y);
   return (u > 0.5f) == (v > 0.5f) ? c0_ : c1_;
 }

@@ -10,7 +10,7 @@ class CheckerboardTexture final : public Texture {
  public:
   CheckerboardTexture(const Color& c0, const Color& c1, const UvTransform& to_uv) : c0_(c0), c1_(c1), to_uv_(to_uv) {}
   static std::unique_ptr<Texture> create(const Params& p);
-  Color eval(const Vec2& uv) const override;
+  Color eval(const TexturePoint& p) const override;
 
  private:
   Color c0_, c1_;

@@ -3,6 +3,7 @@
 #include "core/registry.h"
 #include "core/textures/bitmap.h"
 #include "core/textures/checkerboard.h"
+#include "core/textures/mesh_attribute.h"
 
 namespace caustica {
 
@@ -10,6 +11,7 @@ const std::vector<TexturePlugin>& texture_plugins() {
   static const std::vector<TexturePlugin> table = {
       {"bitmap", true, BitmapTexture::create, {"filename", "filter_type", "wrap_mode", "raw", "to_uv"}},
       {"checkerboard", true, CheckerboardTexture::create, {"color0", "color1", "to_uv"}},
+      {"mesh_attribute", true, MeshAttributeTexture::create, {"name", "scale"}},
   };
   return table;
 }

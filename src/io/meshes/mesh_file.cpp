@@ -24,6 +24,25 @@ void set_vertex_attributes(MeshData& mesh, const std::vector<Vec3>& normals, con
   }
 }
 
+void add_mesh_attribute(MeshData& mesh, const std::string& name, int channels, bool per_face,
+                        const std::vector<float>& values) {
+  MeshAttribute a;
+  a.name = name;
+  a.channels = channels == 1 ? 1 : 3;
+  a.per_face = per_face;
+  const size_t stride = size_t(channels);
+  auto value = [&](size_t i) {
+    const float* v = &values[i * stride];
+    return channels == 1 ? Color(v[0]) : Color(v[0], v[1], v[2]);
+  };
+  a.values.reserve(mesh.tris.size() * (per_face ? 1 : 3));
+  for (size_t t = 0; t < mesh.tris.size(); ++t) {
+    if (per_face) a.values.push_back(value(t));
+    else for (int k = 0; k < 3; ++k) a.values.push_back(value(size_t(mesh.tris[t][k])));
+  }
+  mesh.extra.list.push_back(std::move(a));
+}
+
 void add_smooth_normals(MeshData& mesh) {
   std::vector<Vec3> sum(mesh.verts.size(), Vec3(0.0f));
   for (const glm::ivec3& t : mesh.tris) {

@@ -25,11 +25,19 @@ struct MeshData {
   std::vector<int> material_ids;
   std::vector<MeshMaterial> materials;
   std::string material_dir;  // the folder map_kd paths are relative to
+  // Per-vertex and per-face values besides these (PLY properties, .serialized colours), per
+  // triangle; the scene keeps them and points the triangles' attributes at them.
+  MeshAttributes extra;
 };
 
 // Per-triangle shading data from per-vertex normals and UVs (either may be empty, or one per
 // vertex); a triangle with a non-finite normal or UV goes without it.
 void set_vertex_attributes(MeshData& mesh, const std::vector<Vec3>& normals, const std::vector<Vec2>& uvs);
+
+// Adds a mesh attribute from `channels` (1, 3 or 4: alpha dropped) values per vertex, or per
+// triangle with `per_face`. The values must be finite.
+void add_mesh_attribute(MeshData& mesh, const std::string& name, int channels, bool per_face,
+                        const std::vector<float>& values);
 
 // Area-weighted vertex normals for the triangles that have none (as Mitsuba does for a mesh
 // without normals, unless face_normals); a vertex whose normals cancel leaves its triangles flat.

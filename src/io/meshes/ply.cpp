@@ -1,7 +1,9 @@
 // PLY meshes (ASCII, binary little- and big-endian): vertex x y z, optional nx ny nz and
 // u v (or s t, texture_u texture_v, texture_s texture_t), faces as lists of vertex indices
-// (vertex_indices or vertex_index), polygons split into fans. Other elements and properties are
-// skipped. Every count and index is checked against the file before anything is allocated.
+// (vertex_indices or vertex_index), polygons split into fans. Other vertex and face properties
+// become mesh attributes as Mitsuba 3's PLY reader groups them (mesh_attribute_groups below);
+// other elements are skipped. Every count and index is checked against the file before
+// anything is allocated.
 //
 // We tried Assimp (Debian's libassimp-dev 5.2.5) first: on a binary PLY cut short it crashed
 // (SIGSEGV in its post-processing) or spun without end, and a system library cannot be fuzzed
@@ -11,7 +13,9 @@
 #include <cstring>
 #include <fstream>
 #include <sstream>
+#include <set>
 #include "core/error.h"
+#include "core/image.h"
 #include "io/meshes/mesh_file.h"
 
 namespace caustica {
@@ -56,6 +60,72 @@ bool scalar_type(const std::string& t, int& size, bool& real, bool& is_signed) {
     }
   }
   return false;
+}
+
+// A mesh attribute made of one or three scalar properties of an element.
+struct AttributeGroup {
+  std::string name;
+  std::vector<size_t> props;
+};
+
+// Mitsuba 3's grouping of a vertex or face element's other properties into attributes
+// (src/shapes/ply.h, find_other_fields): r g b (or red green blue) make "<type>color" (an
+// alpha is dropped); then each run of consecutive properties named prefix_X, whose one-letter
+// postfixes follow x y z, r g b, 0 1 2 or 1 2 3 and number 1 or 3, makes "<type>prefix" (with
+// "_color" appended for r g b). Runs that break these rules, repeated prefixes, lists and
+// names without a postfix are skipped. `type` is "vertex_" or "face_".
+std::vector<AttributeGroup> mesh_attribute_groups(const std::vector<Property>& props, const std::string& type,
+                                                  std::set<std::string> reserved) {
+  std::vector<AttributeGroup> out;
+  auto find = [&](const char* n) {
+    for (size_t k = 0; k < props.size(); ++k) {
+      if (props[k].name == n && !props[k].list) return int(k);
+    }
+    return -1;
+  };
+  int r = find("r"), g = find("g"), b = find("b");
+  if (r < 0 || g < 0 || b < 0) r = find("red"), g = find("green"), b = find("blue");
+  if (r >= 0 && g >= 0 && b >= 0) out.push_back({type + "color", {size_t(r), size_t(g), size_t(b)}});
+  for (const char* n : {"r", "g", "b", "a", "red", "green", "blue", "alpha"}) reserved.insert(n);
+  static const char* const kPostfix[4] = {"xr01", "yg12", "zb23", "wa34"};
+  auto prefix_of = [&](size_t k) {
+    const std::string& n = props[k].name;
+    const size_t us = n.find_last_of('_');
+    if (props[k].list || reserved.count(n) || us == std::string::npos || us == 0 || us + 2 != n.size()) return std::string();
+    return n.substr(0, us);
+  };
+  std::set<std::string> seen;
+  for (size_t k = 0; k < props.size();) {
+    const std::string prefix = prefix_of(k);
+    if (prefix.empty()) {
+      ++k;
+      continue;
+    }
+    size_t end = k;
+    while (end < props.size() && prefix_of(end) == prefix) ++end;
+    const size_t n = end - k;
+    const char* first = std::strchr(kPostfix[0], props[k].name.back());
+    bool ok = seen.insert(prefix).second && first && (n == 1 || n == 3);
+    const size_t category = first ? size_t(first - kPostfix[0]) : 0;
+    for (size_t i = 0; ok && i < n; ++i) ok = props[k + i].name.back() == kPostfix[i][category];
+    if (ok) {
+      AttributeGroup group{type + prefix + (category == 1 ? "_color" : ""), {}};
+      for (size_t i = 0; i < n; ++i) group.props.push_back(k + i);
+      out.push_back(group);
+    }
+    k = end;
+  }
+  return out;
+}
+
+// An attribute's value as Mitsuba's PLY reader converts it: floats as they are, integers
+// normalised to [0, 1] ([-1, 1] when signed) and decoded from sRGB.
+float attribute_value(const Property& p, double v) {
+  if (p.real) return float(v);
+  const int bits = 8 * std::abs(p.type);
+  const double max = p.type < 0 ? std::ldexp(1.0, bits - 1) - 1.0 : std::ldexp(1.0, bits) - 1.0;
+  const float x = float(std::max(-1.0, v / max));
+  return x < 0.0f ? -srgb_to_linear(-x) : srgb_to_linear(x);
 }
 
 class Reader {
@@ -274,6 +344,8 @@ class Reader {
       if (e.props[k].list && (n == "x" || n == "y" || n == "z")) fail("vertex property " + n + " is a list");
     }
     if (ix[0] < 0 || ix[1] < 0 || ix[2] < 0) fail("the vertex element lacks x, y or z");
+    vertex_groups_ = mesh_attribute_groups(e.props, "vertex_", {"x", "y", "z", "nx", "ny", "nz", "u", "v", "s", "t"});
+    vertex_values_.assign(vertex_groups_.size(), {});
     const bool has_n = in[0] >= 0 && in[1] >= 0 && in[2] >= 0, has_uv = iuv[0] >= 0 && iuv[1] >= 0;
     check_room(e);
     // An ASCII vertex takes at least 6 bytes ("0 0 0\n"): no more can be in the file.
@@ -286,6 +358,7 @@ class Reader {
         if (p.list) skip(p);
         else row[k] = value(p.type, p.real);
       }
+      attribute_row(e, i, vertex_groups_, row, vertex_values_);
       end_row(e, i);
       const Vec3 v{float(row[size_t(ix[0])]), float(row[size_t(ix[1])]), float(row[size_t(ix[2])])};
       if (!is_finite(v)) fail("vertex " + std::to_string(i) + " is not finite");
@@ -294,6 +367,21 @@ class Reader {
       if (has_uv) uvs.emplace_back(float(row[size_t(iuv[0])]), float(row[size_t(iuv[1])]));
     }
   }
+
+  // Appends a row's values of each attribute group; non-finite values are an error.
+  void attribute_row(const Element& e, uint64_t i, const std::vector<AttributeGroup>& groups,
+                     const std::vector<double>& row, std::vector<std::vector<float>>& values) {
+    for (size_t g = 0; g < groups.size(); ++g) {
+      for (size_t k : groups[g].props) {
+        const float v = attribute_value(e.props[k], row[k]);
+        if (!std::isfinite(v)) fail(e.name + " " + std::to_string(i) + ": property " + e.props[k].name + " is not finite");
+        values[g].push_back(v);
+      }
+    }
+  }
+
+  std::vector<AttributeGroup> vertex_groups_;
+  std::vector<std::vector<float>> vertex_values_;  // per group, its values vertex by vertex
 
   void faces(const Element& e, MeshData& mesh, const std::vector<Vec3>& normals, const std::vector<Vec2>& uvs) {
     int list = -1;
@@ -305,13 +393,19 @@ class Reader {
     if (e.props[size_t(list)].real) fail("vertex_indices must be integers");
     check_room(e);
     const uint64_t nv = mesh.verts.size();
+    const std::vector<AttributeGroup> groups =
+        mesh_attribute_groups(e.props, "face_", {e.props[size_t(list)].name});
+    std::vector<std::vector<float>> face_values(groups.size()), values(groups.size());
+    std::vector<double> row(e.props.size());
     std::vector<int> poly;
     for (uint64_t i = 0; i < e.count; ++i) {
       begin_row(e, i);
+      const size_t first_triangle = mesh.tris.size();
       for (size_t k = 0; k < e.props.size(); ++k) {
         const Property& p = e.props[k];
         if (int(k) != list) {
-          skip(p);
+          if (p.list) skip(p);
+          else row[k] = value(p.type, p.real);
           continue;
         }
         const uint64_t n = list_count(p);
@@ -324,9 +418,21 @@ class Reader {
         }
         for (size_t c = 1; c + 1 < poly.size(); ++c) mesh.tris.emplace_back(poly[0], poly[c], poly[c + 1]);
       }
+      for (auto& v : values) v.clear();
+      attribute_row(e, i, groups, row, values);
       end_row(e, i);
+      // Each triangle of the face's fan gets the face's values.
+      for (size_t t = first_triangle; t < mesh.tris.size(); ++t) {
+        for (size_t g = 0; g < groups.size(); ++g) face_values[g].insert(face_values[g].end(), values[g].begin(), values[g].end());
+      }
     }
     set_vertex_attributes(mesh, normals, uvs);
+    for (size_t g = 0; g < vertex_groups_.size(); ++g) {
+      add_mesh_attribute(mesh, vertex_groups_[g].name, int(vertex_groups_[g].props.size()), false, vertex_values_[g]);
+    }
+    for (size_t g = 0; g < groups.size(); ++g) {
+      add_mesh_attribute(mesh, groups[g].name, int(groups[g].props.size()), true, face_values[g]);
+    }
   }
 };
 

@@ -103,10 +103,6 @@ class StreamReader {
     at_ += n * size_t(dim) * size;
   }
   size_t position() const { return at_; }
-  void skip(size_t n, const char* what) {
-    need(n, what);
-    at_ += n;
-  }
 
  private:
   const std::string& data_;
@@ -187,7 +183,14 @@ MeshData parse_serialized(const std::string& bytes, const std::string& name, int
     uvs.resize(2 * nv);
     in.reals(nv, 2, dbl, uvs.data(), "texture coordinates");
   }
-  if (flags & kColors) in.skip(size_t(nv) * 3 * (dbl ? 8 : 4), "vertex colours");
+  std::vector<float> colours;
+  if (flags & kColors) {
+    colours.resize(3 * nv);
+    in.reals(nv, 3, dbl, colours.data(), "vertex colours");
+    for (size_t i = 0; i < colours.size(); ++i) {
+      if (!std::isfinite(colours[i])) throw InputError(name + ": the colour of vertex " + std::to_string(i / 3) + " is not finite");
+    }
+  }
   for (size_t t = 0; t < nt; ++t) {
     glm::ivec3 tri;
     for (int k = 0; k < 3; ++k) {
@@ -205,6 +208,8 @@ MeshData parse_serialized(const std::string& bytes, const std::string& name, int
   }
   for (size_t i = 0; i < uvs.size(); i += 2) uv.emplace_back(uvs[i], uvs[i + 1]);
   set_vertex_attributes(mesh, n, uv);
+  // Mitsuba 3 names them so for its mesh_attribute texture.
+  if (!colours.empty()) add_mesh_attribute(mesh, "vertex_color", 3, false, colours);
   return mesh;
 }
 
