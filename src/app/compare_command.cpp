@@ -1,5 +1,6 @@
 // `caustica compare`.
 #include "app/compare_command.h"
+#include "app/stop_signals.h"
 #include "io/image_io.h"
 #include <iomanip>
 #include <iostream>
@@ -62,7 +63,13 @@ int run_compare(const CompareArgs& args) {
   const Image image = read_image(args.image);
   const Reference reference = read_references(args.references);
   const ErrorMetrics m = compare_images(image, reference.mean, args.image, describe_references(args.references));
-  if (!args.diff.empty()) write_image(args.diff, error_map(image, reference.mean));
+  if (!args.diff.empty()) {
+    // A signal while the error map is written waits for it to be complete.
+    StopSignals stop_signals;
+    write_image(args.diff, error_map(image, reference.mean));
+    stop_signals.restore();
+    if (StopSignals::stopped()) return StopSignals::exit_code();
+  }
   std::cout << format_metrics(m, args.json, &reference);
   return 0;
 }

@@ -7,6 +7,7 @@
 #include <iostream>
 #include <tbb/global_control.h>
 #include <unistd.h>
+#include "app/stop_signals.h"
 #include "core/metrics.h"
 #include "io/atomic_file.h"
 #include "io/image_io.h"
@@ -94,14 +95,23 @@ void write_ply(const std::string& path, const std::vector<const PhotonMap*>& map
 int run_photons(const PhotonsArgs& args) {
   const std::string ext = fs::path(args.output).extension().string();
   if (ext != ".png" && ext != ".ply") throw InputError(args.output + ": output must be .png or .ply");
-  if (ext == ".png") check_output_path(args.output);
+  check_output_file(args.output);
   LoadedScene loaded = load_scene_with(args.common);
   Scene& scene = *loaded.scene;
   const int threads = thread_count(args.common);
   tbb::global_control control(tbb::global_control::max_allowed_parallelism, size_t(threads));
 
+  // Ctrl-C or SIGTERM stops the photon pass and the picture's background at once (nothing is
+  // written then); during the write it waits for the file to be complete.
+  StopSignals stop_signals;
+  auto stopped = [&] {
+    if (!StopSignals::stopped()) return false;
+    std::cerr << "interrupted: " << args.output << " not written\n";
+    return true;
+  };
   auto integrator = integrator_for(loaded, "photon", args.common);
-  integrator->preprocess(scene, {scene.render.seed, args.common.quiet});
+  integrator->preprocess(scene, {scene.render.seed, args.common.quiet, &StopSignals::flag()});
+  if (stopped()) return StopSignals::exit_code();
   std::vector<const PhotonMap*> maps;
   if (args.map != "caustic") maps.push_back(integrator->global_map());
   if (args.map != "global") maps.push_back(integrator->caustic_map());
@@ -116,11 +126,16 @@ int run_photons(const PhotonsArgs& args) {
     RenderOptions options;
     options.job = {scene.render.seed, 4, 0.0};
     options.quiet = true;
+    options.cancel = &StopSignals::flag();
     RenderStats stats;
     Image background = render_image(scene, *whitted, options, stats);
+    if (stopped()) return StopSignals::exit_code();
     for (Color& c : background.pixels) c = Color(luminance(c) * 0.25f);
     write_image(args.output, splat_photons(scene, maps, background, args.heatmap, &visible));
   }
+  stop_signals.restore();
+  // A signal during the write: the file is complete, and the exit says it was stopped.
+  if (StopSignals::stopped()) return StopSignals::exit_code();
   if (!args.common.quiet) {
     std::cout << "photons: " << total << " in " << args.map << " map" << (args.map == "both" ? "s" : "") << "\n"
               << integrator->describe();

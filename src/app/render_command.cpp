@@ -14,6 +14,14 @@
 #include "trace/render.h"
 
 namespace caustica {
+namespace {
+// An AOV's file beside the main output: out.png -> out.photons.exr.
+std::string aov_path(const std::string& output, const char* suffix) {
+  const std::filesystem::path out(output);
+  return (out.parent_path() / out.stem()).string() + suffix;
+}
+}  // namespace
+
 int run_render(const RenderArgs& args) {
   LoadedScene loaded = load_scene_with(args.common);
   Scene& scene = *loaded.scene;
@@ -38,6 +46,9 @@ int run_render(const RenderArgs& args) {
   std::unique_ptr<Integrator> integrator = integrator_for(loaded, args.integrator, args.common);
   if (args.aov && !integrator->supports_aov()) {
     throw InputError("--aov needs a photon integrator (photon or photon-direct), not \"" + integrator->name() + "\"");
+  }
+  if (args.aov && cluster.root()) {
+    for (const char* aov : {".photons.exr", ".radius.exr"}) check_output_file(aov_path(output, aov));
   }
   // Under mpirun: every rank must render the same image, and the integrator's passes must not
   // depend on one another.
@@ -91,17 +102,17 @@ int run_render(const RenderArgs& args) {
   // The image and its AOVs appear together or not at all.
   AtomicFileSet outputs;
   write_image_to(outputs.add(output), image, args.exposure);
-  const std::filesystem::path out(output);
-  const std::string stem = (out.parent_path() / out.stem()).string();
   const bool with_aovs = args.aov && aovs.size() == 2;
   if (with_aovs) {
     // Beside the main output: photon counts (R global, G caustic) and estimate radii, linear EXR.
-    write_image_to(outputs.add(stem + ".photons.exr"), aovs[0]);
-    write_image_to(outputs.add(stem + ".radius.exr"), aovs[1]);
+    write_image_to(outputs.add(aov_path(output, ".photons.exr")), aovs[0]);
+    write_image_to(outputs.add(aov_path(output, ".radius.exr")), aovs[1]);
   }
   outputs.commit("image");
   stop_signals.restore();
-  if (with_aovs && !args.common.quiet) std::cout << "aov: " << stem << ".photons.exr, " << stem << ".radius.exr\n";
+  if (with_aovs && !args.common.quiet) {
+    std::cout << "aov: " << aov_path(output, ".photons.exr") << ", " << aov_path(output, ".radius.exr") << "\n";
+  }
   cluster.barrier();
 
   if (!args.common.quiet) {

@@ -75,6 +75,19 @@ std::unique_ptr<Integrator> integrator_for(const LoadedScene& loaded, const std:
       if (lenient) continue;
       throw InputError(flag + " does not apply to integrator \"" + type + "\"");
     }
+    // Checked on its own first, so that a value the integrator refuses is blamed on its flag,
+    // not on the scene file the merged settings are read as.
+    JsonSource alone;
+    alone.value = nlohmann::json::object({{kv.first, kv.second}});
+    alone.file = flag + " " + kv.second.dump();
+    try {
+      create_integrator(type, alone, scene.render);
+    } catch (const InputError& e) {
+      std::string message = e.what();
+      const std::string prefix = alone.file + ": /" + kv.first + ": ";
+      if (message.rfind(prefix, 0) == 0) message = alone.file + ": " + message.substr(prefix.size());
+      throw InputError(message);
+    }
     settings.value[kv.first] = kv.second;
   }
   for (const auto& kv : spec_settings) {

@@ -1,6 +1,7 @@
 // Ctrl-C (SIGINT) and SIGTERM (what batch schedulers such as Slurm send at a job's time limit)
-// stop `render` and `converge` after the work completed so far, which is written: the handlers
-// stay installed until the outputs are in place, so a signal while writing waits for them.
+// stop `render` and `converge` after the work completed so far, which is written, and `photons`
+// before it writes anything. The handlers stay installed until the outputs are in place (in
+// `compare --diff` too), so a signal while writing waits for them, and the exit is 128 + signal.
 #pragma once
 #include <atomic>
 

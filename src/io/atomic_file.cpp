@@ -1,6 +1,7 @@
 // Files written all or nothing: temporary, fsync, rename.
 #include "io/atomic_file.h"
 #include <cerrno>
+#include <csignal>
 #include <climits>
 #include <cstring>
 #include <fcntl.h>
@@ -32,11 +33,26 @@ std::string folder_of(const std::string& target) {
 }
 }  // namespace
 
+namespace {
+void check_name_length(const std::string& path) {
+  if (fs::path(path).filename().string().size() > NAME_MAX) {
+    throw InputError(path + ": the file name is longer than " + std::to_string(NAME_MAX) + " bytes");
+  }
+}
+}  // namespace
+
+void check_output_file(const std::string& path) {
+  check_name_length(path);
+  const std::string dir = folder_of(path);
+  std::error_code ec;
+  if (!fs::is_directory(dir, ec)) throw InputError(path + ": output folder " + dir + " does not exist");
+  if (access(dir.c_str(), W_OK) != 0) throw InputError(path + ": output folder " + dir + " is not writable");
+  if (fs::is_directory(path, ec)) throw InputError(path + ": is a directory");
+}
+
 AtomicFile::AtomicFile(std::string target) : target_(std::move(target)) {
   // Refused before anything is written, so that a set of files fails as a whole.
-  if (fs::path(target_).filename().string().size() > NAME_MAX) {
-    throw InputError(target_ + ": the file name is longer than " + std::to_string(NAME_MAX) + " bytes");
-  }
+  check_name_length(target_);
   // Created here, exclusively (mkstemps), so that no other process, even on another machine
   // sharing the folder, can pick the same name; the writers then replace its empty content.
   const std::string ext = fs::path(target_).extension().string().substr(0, 16);
@@ -57,6 +73,9 @@ AtomicFile::AtomicFile(std::string target) : target_(std::move(target)) {
   ::fchmod(fd, 0666 & ~mask);
   ::close(fd);
   temp_ = name;
+  // For tests: a signal that arrives while the file is being written, at a known moment
+  // (CAUSTICA_TEST_SIGNAL_WHILE_WRITING=15 raises SIGTERM here).
+  if (const char* sig = std::getenv("CAUSTICA_TEST_SIGNAL_WHILE_WRITING")) std::raise(std::atoi(sig));
 }
 
 AtomicFile::~AtomicFile() {

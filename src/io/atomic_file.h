@@ -10,6 +10,11 @@
 
 namespace caustica {
 
+// Fails (InputError) unless `path` can be written: its folder exists and is writable, it is not
+// a folder itself, and its name fits NAME_MAX. Called before long work, so that a render is not
+// lost to a name that cannot be written.
+void check_output_file(const std::string& path);
+
 class AtomicFile {
  public:
   explicit AtomicFile(std::string target);

@@ -3,7 +3,6 @@
 #include <OpenImageIO/imageio.h>
 #include <algorithm>
 #include <filesystem>
-#include <unistd.h>
 #include <OpenImageIO/filesystem.h>
 #include "core/error.h"
 #include "core/memory.h"
@@ -27,12 +26,7 @@ void check_output_path(const std::string& path) {
   if (!is_supported_image_path(path)) {
     throw InputError(path + ": unknown image type \"" + extension_of(path) + "\" (known: .exr, .hdr, .pfm, .png)");
   }
-  fs::path dir = fs::path(path).parent_path();
-  if (dir.empty()) dir = ".";
-  std::error_code ec;
-  if (!fs::is_directory(dir, ec)) throw InputError(path + ": output folder " + dir.string() + " does not exist");
-  if (access(dir.c_str(), W_OK) != 0) throw InputError(path + ": output folder " + dir.string() + " is not writable");
-  if (fs::is_directory(path, ec)) throw InputError(path + ": is a directory");
+  check_output_file(path);
 }
 
 namespace {

@@ -8,7 +8,7 @@ namespace caustica {
 
 // True for the file endings write_image understands.
 bool is_supported_image_path(const std::string& path);
-// Fails (InputError) when the extension is unknown or the folder does not exist or is not writable.
+// Fails (InputError) when the extension is unknown or check_output_file fails.
 void check_output_path(const std::string& path);
 // Writes all or nothing (io/atomic_file.h): no half-written file ever carries the target name.
 // `exposure` (stops) applies to PNG only.

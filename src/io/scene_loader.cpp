@@ -3,7 +3,7 @@
 #include "io/scene_loader.h"
 #include <filesystem>
 #include <fstream>
-#include <set>
+#include <map>
 #include <sstream>
 #include "core/bsdf/registry.h"
 #include "core/lights/registry.h"
@@ -40,15 +40,27 @@ void Loader::load(const json& doc) {
 }
 
 void Loader::check_mesh_attribute_textures() {
-  std::set<std::string> carried;
+  std::map<std::string, float> carried;  // each attribute's largest magnitude over the meshes
   for (const auto& m : scene().mesh_attributes) {
-    for (const MeshAttribute& a : m->list) carried.insert(a.name);
+    for (const MeshAttribute& a : m->list) {
+      float& most = carried[a.name];
+      for (const Color& v : a.values) most = std::max(most, max_component(glm::abs(v)));
+    }
   }
   for (const auto& t : scene().textures) {
     const auto* m = dynamic_cast<const MeshAttributeTexture*>(t.get());
-    if (!m || carried.count(m->name())) continue;
+    if (!m) continue;
+    const auto it = carried.find(m->name());
+    if (it != carried.end()) {
+      if (double(it->second) * m->scale() > kMaxColor) {
+        r.fail(child(texture_places_[t.get()], "name"),
+               "the attribute \"" + m->name() + "\" reaches " + format_number(double(it->second) * m->scale()) +
+                   " (times scale), beyond the " + format_number(kMaxColor) + " a colour may hold");
+      }
+      continue;
+    }
     std::string known;
-    for (const std::string& n : carried) known += (known.empty() ? "" : ", ") + n;
+    for (const auto& c : carried) known += (known.empty() ? "" : ", ") + c.first;
     r.fail(child(texture_places_[t.get()], "name"),
            "no mesh in the scene carries the attribute \"" + m->name() + "\" (" +
                (known.empty() ? std::string("no mesh carries any: they come from PLY vertex or face properties")

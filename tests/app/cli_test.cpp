@@ -122,6 +122,10 @@ TEST_CASE("cli: bad input exits non-zero with a located message and writes no im
       {"--time nan", good, "--time nan", "expected a finite number, not nan"},
       {"--time inf", good, "--time inf", "expected a finite number, not inf"},
       {"--photons 1e30", good, "--integrator photon --photons 1e30", "--photons 1e30: out of range"},
+      // Issue 23: a flag's value the integrator refuses is blamed on the flag, not on the scene file.
+      {"--photons 1e10", good, "--integrator photon --photons 1e10",
+       "error: --photons 10000000000: value 10000000000 is out of range [0, 2147483648]"},
+      {"--gather-rays 1e10", good, "--integrator photon --gather-rays 1e10", "error: --gather-rays 10000000000: value"},
       {"--seed -1", good, "--seed -1", "--seed"},
       {"a seed of 2^64 in the scene", replaced("\"spp\": 2", "\"spp\": 2, \"seed\": 18446744073709551616"), "",
        "bad.json: /render/seed: expected a whole number from 0 to 2^64 - 1"},
@@ -458,8 +462,65 @@ TEST_CASE("cli: a signal during the photon pass stops it at once and writes no i
   CHECK(r.err.find("interrupted before the first pass was complete: no image written") != std::string::npos);
   CHECK(seconds < delay + 1.5);  // about 0.05 s after the signal in a Release build; was 2 s
   CHECK_FALSE(fs::exists(dir.file("out.exr")));
-  for (const auto& e : fs::directory_iterator(dir.path())) {
-    CHECK(e.path().filename().string().find(".tmp") == std::string::npos);
+  CHECK(test::temporaries(dir.path()).empty());
+}
+
+TEST_CASE("cli: output names too long to write are refused before the render, AOV names too", "[app]") {
+  test::TempDir dir;
+  const std::string scene = std::string(CAUSTICA_SOURCE_DIR) + "/scenes/cornell-box.json";
+  const std::string small = " --width 16 --height 16 --spp 2", photons = " --photons 2000 --caustic-photons 2000";
+  // 256 bytes: one past NAME_MAX.
+  auto r = run_caustica("render '" + scene + "'" + small + " -o " + std::string(252, 'a') + ".png", dir);
+  CHECK(r.exit_code == 1);
+  CHECK(r.err.find("the file name is longer than 255 bytes") != std::string::npos);
+  CHECK(r.out.find("render time") == std::string::npos);  // refused before rendering
+  // The main image's name fits, its AOV's (stem + ".photons.exr", 258 bytes) does not: nothing is
+  // rendered or written.
+  const std::string stem(246, 'b');
+  r = run_caustica("render '" + scene + "'" + small + photons + " --integrator photon --aov -o " + stem + ".exr", dir);
+  CHECK(r.exit_code == 1);
+  CHECK(r.err.find(stem + ".photons.exr: the file name is longer than 255 bytes") != std::string::npos);
+  CHECK(r.out.find("render time") == std::string::npos);
+  CHECK_FALSE(fs::exists(dir.file(stem + ".exr")));
+  r = run_caustica("photons '" + scene + "' --width 16 --height 16" + photons + " -o " + std::string(252, 'c') + ".ply", dir);
+  CHECK(r.exit_code == 1);
+  CHECK(r.err.find("the file name is longer than 255 bytes") != std::string::npos);
+  CHECK(r.out.find("photons:") == std::string::npos);
+}
+
+TEST_CASE("cli: a signal while a file is written waits for it: the file complete, no temporary, exit 128 + signal", "[app][interrupt]") {
+  // The signal is raised right after each output's temporary is made (a test hook in
+  // io/atomic_file.cpp), the moment that killed photons and compare before: they left the
+  // temporary and no file.
+  test::TempDir dir;
+  const std::string scene = std::string(CAUSTICA_SOURCE_DIR) + "/scenes/cornell-box.json";
+  const std::string small = " --width 16 --height 16 -q", photons = " --photons 2000 --caustic-photons 2000";
+  const std::string hook = "CAUSTICA_TEST_SIGNAL_WHILE_WRITING=15 ";
+  REQUIRE(run_caustica("render '" + scene + "'" + small + " --spp 2 -o ref.exr", dir).exit_code == 0);
+  struct Case {
+    std::string args;
+    std::vector<std::string> files;
+  };
+  const std::vector<Case> cases = {
+      {"render '" + scene + "'" + small + " --spp 2 -o r.png", {"r.png"}},
+      {"render '" + scene + "'" + small + photons + " --spp 2 --integrator photon --aov -o a.exr",
+       {"a.exr", "a.photons.exr", "a.radius.exr"}},
+      {"photons '" + scene + "'" + small + photons + " -o p.png", {"p.png"}},
+      {"photons '" + scene + "'" + small + photons + " -o p.ply", {"p.ply"}},
+      {"compare ref.exr ref.exr --diff d.png", {"d.png"}},
+  };
+  for (const Case& c : cases) {
+    INFO(c.args);
+    const auto r = run_caustica(c.args, dir, hook);
+    INFO(r.err << r.out);
+    CHECK(r.exit_code == 143);
+    for (const std::string& f : c.files) {
+      INFO(f);
+      REQUIRE(fs::exists(dir.file(f)));
+      CHECK(fs::file_size(dir.file(f)) > 100);
+      if (f.size() > 4 && f.substr(f.size() - 4) != ".ply") CHECK(read_image(dir.file(f)).width == 16);
+    }
+    CHECK(test::temporaries(dir.path()).empty());
   }
 }
 
@@ -506,8 +567,6 @@ TEST_CASE("cli: Ctrl-C or SIGTERM stops a render within a second and keeps the c
     CHECK(r.out.find("interrupted") != std::string::npos);
     const Image img = read_image(dir.file("out.exr"));
     CHECK(img.mean().x > 0.05f);  // the passes completed so far, not a black image
-    for (const auto& e : fs::directory_iterator(dir.path())) {
-      CHECK(e.path().filename().string().find(".tmp") == std::string::npos);
-    }
+    CHECK(test::temporaries(dir.path()).empty());
   }
 }

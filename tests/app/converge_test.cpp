@@ -156,9 +156,7 @@ TEST_CASE("converge: Ctrl-C or SIGTERM ends the run with the figures so far writ
     const std::string html = test::read_text(dir.file("report/index.html"));
     CHECK(html.find("interrupted") != std::string::npos);
     CHECK(html.find("not run: photon") != std::string::npos);
-    for (const auto& e : fs::recursive_directory_iterator(dir.path())) {
-      CHECK(e.path().filename().string().find(".tmp") == std::string::npos);
-    }
+    CHECK(test::temporaries(dir.path()).empty());
   }
 }
 

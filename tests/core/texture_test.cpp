@@ -189,6 +189,13 @@ TEST_CASE("textures: missing and unreadable files, unknown types and keys are er
   write_image(dir.file("nan.exr"), nan_texels);
   CHECK_THROWS_WITH(with(R"({"type": "bitmap", "filename": "nan.exr"})"),
                     Contains("/materials/m/reflectance/filename") && Contains("nan.exr: NaN or infinite texel at (2, 1)"));
+  // Past the 1e9 a colour may hold (an emission texture of 1e15 rendered a flat or black image).
+  nan_texels.at(2, 1) = Color(0.5f);
+  nan_texels.at(3, 0) = Color(0.5f, 0.5f, 1e15f);
+  write_image(dir.file("bright.exr"), nan_texels);
+  CHECK_THROWS_WITH(with(R"({"type": "bitmap", "filename": "bright.exr"})"),
+                    Contains("/materials/m/reflectance/filename") &&
+                        Contains("bright.exr: the texel at (3, 0) is 1e+15, beyond the 1e+09 a colour may hold"));
   Image noise(64, 64);
   uint32_t s = 7;
   for (Color& c : noise.pixels) {

@@ -212,6 +212,22 @@ TEST_CASE("mesh attributes: bad names and attributes no mesh carries are errors 
                  Contains("no mesh in the scene carries the attribute \"vertex_normal_map\" (the meshes carry: face_color, vertex_color)"));
 }
 
+TEST_CASE("mesh attributes: values beyond what a colour may hold are an error at load", "[mesh][texture]") {
+  // 2e8 times a scale of 10 passes 1e9 (the cap on every colour and emission).
+  const AttributeScene scene(R"({"a": {"type": "diffuse"},
+      "b": {"type": "diffuse", "reflectance": {"type": "mesh_attribute", "name": "face_color", "scale": 5e3}}})");
+  scene.dir.write("f.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+                     "element face 1\nproperty list uchar int vertex_indices\nproperty float r\nproperty float g\n"
+                     "property float b\nend_header\n2 0 0\n3 0 0\n2 1 0\n3 0 1 2 1 2e5 0\n");
+  CHECK_NOTHROW(load_scene(scene.path));
+  scene.dir.write("f.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+                     "element face 1\nproperty list uchar int vertex_indices\nproperty float r\nproperty float g\n"
+                     "property float b\nend_header\n2 0 0\n3 0 0\n2 1 0\n3 0 1 2 1 2e8 0\n");
+  CHECK_THAT(error_of([&] { load_scene(scene.path); }),
+             Contains("/materials/b/reflectance/name") &&
+                 Contains("the attribute \"face_color\" reaches 1e+12 (times scale), beyond the 1e+09 a colour may hold"));
+}
+
 TEST_CASE("mesh attributes: Mitsuba scenes read mesh_attribute textures, errors name the XML line", "[mesh][texture][mitsuba]") {
   test::TempDir dir;
   dir.write("v.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"

@@ -5,6 +5,7 @@
 #include <random>
 #include <sstream>
 #include <string>
+#include <vector>
 
 namespace caustica::test {
 
@@ -29,6 +30,17 @@ class TempDir {
  private:
   std::filesystem::path path_;
 };
+
+// The files in `dir` that are write temporaries left behind (io/atomic_file.cpp names them
+// ".caustica-XXXXXX.ext").
+inline std::vector<std::string> temporaries(const std::filesystem::path& dir) {
+  std::vector<std::string> found;
+  for (const auto& e : std::filesystem::recursive_directory_iterator(dir)) {
+    const std::string name = e.path().filename().string();
+    if (name.rfind(".caustica-", 0) == 0) found.push_back(name);
+  }
+  return found;
+}
 
 inline std::string read_text(const std::string& path) {
   std::ifstream in(path, std::ios::binary);

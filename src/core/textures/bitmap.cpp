@@ -1,69 +1,56 @@
-// Bitmap textures through OpenImageIO's TextureSystem.
+// Bitmap textures: read through OpenImageIO once, filtered here.
 #include "core/textures/bitmap.h"
 #include <OpenImageIO/imageio.h>
-#include <OpenImageIO/texture.h>
 #include <algorithm>
 #include <cmath>
-#include <vector>
-#include "core/image.h"
 #include "core/error.h"
+#include "core/image.h"
+#include "core/memory.h"
 
 namespace caustica {
 namespace {
-OIIO::TextureSystem* texture_system() {
-  static OIIO::TextureSystem* ts = [] {
-    OIIO::TextureSystem* t = OIIO::TextureSystem::create(/*shared=*/true);
-    t->attribute("automip", 1);         // untiled, un-MIP-mapped files are fine
-    t->attribute("autotile", 64);
-    t->attribute("max_memory_MB", 512.0f);
-    // Colour as stored, not multiplied by alpha (which OpenImageIO does to PNGs by default):
-    // Mitsuba drops the alpha channel of a texture and keeps the colour as it is.
-    t->attribute("unassociatedalpha", 1);
-    return t;
-  }();
-  return ts;
-}
 
-// Decodes the whole file once, a band of rows at a time (memory O(width)): a file that does not
-// decode, or holds NaN or infinite texels, is an error here at load, not black texels at every
-// lookup (each of which would try to decode it again).
-void check_texels(const std::string& path, const OIIO::ImageSpec& spec) {
-  auto in = OIIO::ImageInput::open(path);
-  if (!in) throw InputError(path + ": cannot decode the texture: " + OIIO::geterror());
-  const int w = spec.width, h = spec.height, n = spec.nchannels;
-  const int band = std::max(1, std::min(h, int((size_t(1) << 22) / (size_t(w) * size_t(n)))));
-  std::vector<float> rows(size_t(band) * size_t(w) * size_t(n));
-  for (int y0 = 0; y0 < h; y0 += band) {
-    const int y1 = std::min(h, y0 + band);
-    if (!in->read_scanlines(0, 0, y0 + spec.y, y1 + spec.y, 0, 0, n, OIIO::TypeDesc::FLOAT, rows.data())) {
-      throw InputError(path + ": cannot decode the texture: " + in->geterror());
+// A texel index along an axis of n texels, by the wrap mode (Mitsuba's: mirror reflects
+// every other period).
+int wrap_index(int i, int n, TextureWrap wrap) {
+  switch (wrap) {
+    case TextureWrap::Clamp:
+      return std::clamp(i, 0, n - 1);
+    case TextureWrap::Mirror: {
+      int m = i % (2 * n);
+      if (m < 0) m += 2 * n;
+      return m < n ? m : 2 * n - 1 - m;
     }
-    for (size_t i = 0; i < size_t(y1 - y0) * size_t(w) * size_t(n); ++i) {
-      if (!std::isfinite(rows[i])) {
-        const size_t texel = i / size_t(n);
-        throw InputError(path + ": NaN or infinite texel at (" + std::to_string(texel % size_t(w)) + ", " +
-                         std::to_string(size_t(y0) + texel / size_t(w)) + ")");
-      }
+    case TextureWrap::Repeat:
+    default: {
+      const int m = i % n;
+      return m < 0 ? m + n : m;
     }
   }
 }
 
-// d srgb_to_linear / dc.
-float srgb_to_linear_slope(float c) {
-  return c <= 0.04045f ? 1.0f / 12.92f : 2.4f / 1.055f * std::pow((c + 0.055f) / 1.055f, 1.4f);
+// A texture coordinate times the resolution, as an int-safe value: coordinates far outside
+// [0, 1] wrap the same way, and NaN becomes 0.
+double texel_coordinate(float st, int n) {
+  const double x = double(st) * double(n);
+  if (!std::isfinite(x)) return 0.0;
+  // Beyond 2^30 texels the position is kept within one period of 2n (mirror's period).
+  constexpr double kLimit = 1073741824.0;
+  return std::abs(x) < kLimit ? x : std::fmod(x, 2.0 * double(n));
 }
+
 }  // namespace
 
 BitmapTexture::BitmapTexture(const std::string& path, TextureFilter filter, TextureWrap wrap, const UvTransform& to_uv,
                              bool raw)
     : path_(path), filter_(filter), wrap_(wrap), to_uv_(to_uv) {
-  OIIO::TextureSystem* ts = texture_system();
-  const OIIO::ustring name(path);
-  OIIO::ImageSpec spec;
-  if (!ts->get_imagespec(name, 0, spec)) {
-    const std::string err = ts->geterror();
-    throw InputError(path + ": cannot read the texture" + (err.empty() ? std::string() : ": " + err));
-  }
+  // Colour as stored, not multiplied by alpha (which OpenImageIO does to PNGs by default):
+  // Mitsuba drops the alpha channel of a texture and keeps the colour as it is.
+  OIIO::ImageSpec config;
+  config.attribute("oiio:UnassociatedAlpha", 1);
+  auto in = OIIO::ImageInput::open(path, &config);
+  if (!in) throw InputError(path + ": cannot read the texture: " + OIIO::geterror());
+  const OIIO::ImageSpec& spec = in->spec();
   width_ = spec.width;
   height_ = spec.height;
   // The colour channels: all but alpha, as Mitsuba's bitmap (grey-alpha is grey, RGBA is RGB).
@@ -72,51 +59,68 @@ BitmapTexture::BitmapTexture(const std::string& path, TextureFilter filter, Text
   if (spec.alpha_channel >= 0 && spec.alpha_channel < channels_) {
     throw InputError(path + ": the texture's alpha channel comes before its colour channels");
   }
-  check_texels(path, spec);
-  // 8- and 16-bit images hold display-referred sRGB values unless declared raw.
-  srgb_ = !raw && (spec.format == OIIO::TypeDesc::UINT8 || spec.format == OIIO::TypeDesc::UINT16);
-  handle_ = ts->get_texture_handle(name);
+  stored_ = std::min(channels_, 3);
+  const double texels = double(width_) * double(height_);
+  check_memory(texels * stored_ * sizeof(float),
+               path + " (" + std::to_string(width_) + " x " + std::to_string(height_) + " texels)");
+  // Decoded once, here: a file that does not decode, or holds NaN, infinite or too bright
+  // texels, is an error at load; lookups read memory and never the file again.
+  texels_.resize(size_t(texels) * size_t(stored_));
+  if (!in->read_image(0, 0, 0, stored_, OIIO::TypeDesc::FLOAT, texels_.data())) {
+    throw InputError(path + ": cannot decode the texture: " + in->geterror());
+  }
+  // 8- and 16-bit images hold display-referred sRGB values unless declared raw; they are
+  // decoded to linear here, so that filtering interpolates linear values, as Mitsuba's does.
+  const bool srgb = !raw && (spec.format == OIIO::TypeDesc::UINT8 || spec.format == OIIO::TypeDesc::UINT16);
+  for (size_t i = 0; i < texels_.size(); ++i) {
+    float& v = texels_[i];
+    if (!std::isfinite(v) || std::abs(v) > kMaxColor) {
+      const size_t texel = i / size_t(stored_);
+      const std::string at = "(" + std::to_string(texel % size_t(width_)) + ", " + std::to_string(texel / size_t(width_)) + ")";
+      if (!std::isfinite(v)) throw InputError(path + ": NaN or infinite texel at " + at);
+      throw InputError(path + ": the texel at " + at + " is " + format_number(v) + ", beyond the " +
+                       format_number(kMaxColor) + " a colour may hold");
+    }
+    if (srgb) v = srgb_to_linear(v);
+  }
 }
 
-bool BitmapTexture::lookup(const Vec2& st, TextureFilter filter, Color& c, Color* ds, Color* dt) const {
-  OIIO::TextureOpt opt;
-  opt.interpmode = filter == TextureFilter::Nearest ? OIIO::TextureOpt::InterpClosest : OIIO::TextureOpt::InterpBilinear;
-  opt.mipmode = OIIO::TextureOpt::MipModeNoMIP;
-  const OIIO::TextureOpt::Wrap w = wrap_ == TextureWrap::Repeat  ? OIIO::TextureOpt::WrapPeriodic
-                                   : wrap_ == TextureWrap::Mirror ? OIIO::TextureOpt::WrapMirror
-                                                                  : OIIO::TextureOpt::WrapClamp;
-  opt.swrap = opt.twrap = w;
-  float v[3] = {0, 0, 0}, vs[3] = {0, 0, 0}, vt[3] = {0, 0, 0};
-  const int n = std::min(channels_, 3);
-  OIIO::TextureSystem* ts = texture_system();
-  if (!ts->texture(static_cast<OIIO::TextureSystem::TextureHandle*>(handle_), nullptr, opt, st.x, st.y, 0, 0, 0, 0, n, v,
-                   ds ? vs : nullptr, ds ? vt : nullptr)) {
-    return false;
+Color BitmapTexture::texel(int x, int y) const {
+  const float* t = &texels_[(size_t(wrap_index(y, height_, wrap_)) * size_t(width_) + size_t(wrap_index(x, width_, wrap_))) *
+                            size_t(stored_)];
+  return stored_ == 1 ? Color(t[0]) : stored_ == 2 ? Color(t[0], t[1], 0.0f) : Color(t[0], t[1], t[2]);
+}
+
+void BitmapTexture::lookup(const Vec2& st, Color& c, Color* ds, Color* dt) const {
+  const double x = texel_coordinate(st.x, width_), y = texel_coordinate(st.y, height_);
+  if (filter_ == TextureFilter::Nearest) {
+    c = texel(int(std::floor(x)), int(std::floor(y)));
+    if (ds) *ds = *dt = Color(0.0f);
+    return;
   }
-  if (n == 1) v[1] = v[2] = v[0], vs[1] = vs[2] = vs[0], vt[1] = vt[2] = vt[0];
-  for (int i = 0; i < 3; ++i) {
-    // Through the sRGB decoding by the chain rule.
-    const float slope = srgb_ ? srgb_to_linear_slope(v[i]) : 1.0f;
-    if (srgb_) v[i] = srgb_to_linear(v[i]);
-    vs[i] *= slope;
-    vt[i] *= slope;
+  // Texel centres at (i + 1/2) / n.
+  const double fx0 = std::floor(x - 0.5), fy0 = std::floor(y - 0.5);
+  const float fx = float(x - 0.5 - fx0), fy = float(y - 0.5 - fy0);
+  const int x0 = int(fx0), y0 = int(fy0);
+  const Color c00 = texel(x0, y0), c10 = texel(x0 + 1, y0), c01 = texel(x0, y0 + 1), c11 = texel(x0 + 1, y0 + 1);
+  c = (1.0f - fy) * ((1.0f - fx) * c00 + fx * c10) + fy * ((1.0f - fx) * c01 + fx * c11);
+  if (ds) {
+    *ds = float(width_) * ((1.0f - fy) * (c10 - c00) + fy * (c11 - c01));
+    *dt = float(height_) * ((1.0f - fx) * (c01 - c00) + fx * (c11 - c10));
   }
-  c = Color(v[0], v[1], v[2]);
-  if (ds) *ds = Color(vs[0], vs[1], vs[2]);
-  if (dt) *dt = Color(vt[0], vt[1], vt[2]);
-  return true;
 }
 
 Color BitmapTexture::eval(const TexturePoint& p) const {
   Color c(0.0f);
-  return lookup(to_uv_.apply(p.uv), filter_, c, nullptr, nullptr) ? c : Color(0.0f);
+  lookup(to_uv_.apply(p.uv), c, nullptr, nullptr);
+  return c;
 }
 
 bool BitmapTexture::gradient(const Vec2& uv, Vec2& grad) const {
   grad = Vec2(0.0f);
   if (filter_ == TextureFilter::Nearest) return true;
   Color c(0.0f), ds(0.0f), dt(0.0f);
-  if (!lookup(to_uv_.apply(uv), filter_, c, &ds, &dt)) return true;
+  lookup(to_uv_.apply(uv), c, &ds, &dt);
   const float gs = luminance(ds), gt = luminance(dt);
   // s = m00 u + m01 v + tx, t = m10 u + m11 v + ty.
   grad = Vec2(to_uv_.m00 * gs + to_uv_.m10 * gt, to_uv_.m01 * gs + to_uv_.m11 * gt);

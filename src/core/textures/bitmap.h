@@ -1,8 +1,10 @@
-// Mitsuba's `bitmap` texture: an image file read and filtered through OpenImageIO's
-// TextureSystem (tiled, cached, MIP-mapped on demand), shared by every bitmap of a process.
+// Mitsuba's `bitmap` texture: an image file (any format OpenImageIO reads) decoded once at load
+// into linear texels, looked up nearest or bilinear on the base level with Mitsuba's wrap
+// modes, as Mitsuba's bitmap does (no MIP levels).
 #pragma once
 #include <memory>
 #include <string>
+#include <vector>
 #include "core/params.h"
 #include "core/textures/texture.h"
 
@@ -13,8 +15,9 @@ enum class TextureWrap { Repeat, Mirror, Clamp };
 
 class BitmapTexture final : public Texture {
  public:
-  // Throws InputError when OpenImageIO cannot open the file. `raw`: the pixels are linear
-  // data; otherwise 8-bit images are sRGB-decoded (Mitsuba's default for colour textures).
+  // Throws InputError when OpenImageIO cannot read the file, or a texel is not finite or
+  // beyond kMaxColor. `raw`: the pixels are linear data; otherwise 8- and 16-bit images are
+  // sRGB-decoded (Mitsuba's default for colour textures).
   BitmapTexture(const std::string& path, TextureFilter filter, TextureWrap wrap, const UvTransform& to_uv, bool raw);
   // filename, filter_type (bilinear, nearest), wrap_mode (repeat, mirror, clamp), raw, to_uv.
   static std::unique_ptr<Texture> create(const Params& p);
@@ -27,15 +30,17 @@ class BitmapTexture final : public Texture {
   int height() const { return height_; }
 
  private:
-  // The linear colour at uv (through to_uv), and with ds and dt its derivatives along the
-  // image's s and t axes; false when OpenImageIO fails.
-  bool lookup(const Vec2& st, TextureFilter filter, Color& c, Color* ds, Color* dt) const;
+  // The linear colour at image coordinates st (after to_uv), and with ds and dt its
+  // derivatives along the image's s and t axes.
+  void lookup(const Vec2& st, Color& c, Color* ds, Color* dt) const;
+  // The texel at (x, y), wrapped.
+  Color texel(int x, int y) const;
   std::string path_;
-  void* handle_ = nullptr;  // OIIO::TextureSystem::TextureHandle
+  std::vector<float> texels_;  // linear, row by row from the top, `stored_` channels each
+  int stored_ = 3;             // the colour channels kept (at most 3)
   TextureFilter filter_;
   TextureWrap wrap_;
   UvTransform to_uv_;
-  bool srgb_ = false;
   int width_ = 0, height_ = 0, channels_ = 3;  // colour channels, alpha not counted
 };
 

@@ -10,7 +10,7 @@ std::unique_ptr<Texture> MeshAttributeTexture::create(const Params& p) {
     p.fail("name", name.empty() ? "missing key \"name\" (the attribute: vertex_color, face_color, ...)"
                                 : "the attribute's name must start with \"vertex_\" or \"face_\", not \"" + name + "\"");
   }
-  return std::make_unique<MeshAttributeTexture>(name, float(p.number_in("scale", 1.0, 0.0, 1e30)));
+  return std::make_unique<MeshAttributeTexture>(name, float(p.number_in("scale", 1.0, 0.0, kMaxColor)));
 }
 
 Color MeshAttributeTexture::eval(const TexturePoint& p) const {

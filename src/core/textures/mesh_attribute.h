@@ -17,6 +17,7 @@ class MeshAttributeTexture final : public Texture {
   static std::unique_ptr<Texture> create(const Params& p);
   Color eval(const TexturePoint& p) const override;
   const std::string& name() const { return name_; }
+  float scale() const { return scale_; }
 
  private:
   std::string name_;
