@@ -98,8 +98,13 @@ std::vector<std::string> integrator_names() {
 std::unique_ptr<Integrator> create_integrator(const std::string& type, const JsonSource& settings,
                                               const RenderSettings& render) {
   const IntegratorPlugin* row = find_integrator_plugin(type);
-  if (!row) throw InputError("unknown integrator \"" + type + "\" (known: " + plugin_names(integrator_plugins()) + ")");
   const SourceParams params(settings);
+  if (!row) {
+    const std::string message = "unknown integrator \"" + type + "\" (known: " + plugin_names(integrator_plugins()) + ")";
+    // A type the scene file names: said with the file and the place.
+    if (!settings.file.empty()) params.reader().fail(settings.pointer + "/type", message);
+    throw InputError(message);
+  }
   params.reader().check_object(settings.value, settings.pointer, row->keys);
   return row->create(params.params(), render);
 }
