@@ -37,6 +37,15 @@ for x, y, z in verts:
 for f in faces:
     binary += struct.pack("<B3i", 3, *f)
 write("binary.ply", 1, binary)
+# PLY files with vertex and face properties (mesh attributes: colours, grouped runs).
+for path in glob.glob(os.path.join(here, "scenes", "**", "*.ply"), recursive=True):
+    if os.path.getsize(path) < 64 * 1024:
+        write("ply-" + os.path.basename(path), 1, open(path, "rb").read())
+write("attributes.ply", 1, b"ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+      b"property float z\nproperty uchar red\nproperty uchar green\nproperty uchar blue\nproperty float foo_x\n"
+      b"property short bar_0\nelement face 1\nproperty list uchar int vertex_indices\nproperty float id_1\n"
+      b"property uchar r\nproperty uchar g\nproperty uchar b\nend_header\n0 0 0 255 0 128 1 -5\n"
+      b"1 0 0 0 255 0 2 7\n0 1 0 0 0 255 3 9\n3 0 1 2 0.5 10 20 30\n")
 
 
 def serialized_shape(name):

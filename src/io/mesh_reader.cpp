@@ -1,7 +1,9 @@
 // The `mesh` shape: inline vertices and indices or a mesh file (OBJ, PLY, .serialized), with
 // transforms, normals, UVs, and the materials an OBJ's .mtl names.
 #include "io/loader.h"
+#include <algorithm>
 #include <filesystem>
+#include "core/textures/mesh_attribute.h"
 
 namespace caustica::scene_loading {
 
@@ -162,7 +164,12 @@ MeshData Loader::read_mesh(const json& j, const std::string& p) {
       if (has_matrix) n = normal_matrix * n;
     }
   }
-  // The scene keeps the mesh's attributes; its triangles point at them.
+  // The scene keeps the mesh's attributes, its triangles point at them, when a mesh_attribute
+  // texture may read them (materials are read before objects); else they cost memory for nothing.
+  const bool wanted = std::any_of(scene().textures.begin(), scene().textures.end(), [](const auto& t) {
+    return dynamic_cast<const MeshAttributeTexture*>(t.get()) != nullptr;
+  });
+  if (!wanted) mesh.extra.list.clear();
   if (!mesh.extra.list.empty()) {
     scene().mesh_attributes.push_back(std::make_unique<MeshAttributes>(std::move(mesh.extra)));
     mesh.attributes.resize(mesh.tris.size());

@@ -50,10 +50,15 @@ void Loader::check_mesh_attribute_textures() {
   for (const auto& t : scene().textures) {
     const auto* m = dynamic_cast<const MeshAttributeTexture*>(t.get());
     if (!m) continue;
+    const std::string& place = texture_places_[t.get()];
+    if (place.rfind("/lights", 0) == 0) {
+      r.fail(place, "a mesh_attribute texture reads the values of the mesh a ray hits; a light's texture has no mesh "
+                    "(an emitting mesh's radiance may be one)");
+    }
     const auto it = carried.find(m->name());
     if (it != carried.end()) {
       if (double(it->second) * m->scale() > kMaxColor) {
-        r.fail(child(texture_places_[t.get()], "name"),
+        r.fail(child(place, "name"),
                "the attribute \"" + m->name() + "\" reaches " + format_number(double(it->second) * m->scale()) +
                    " (times scale), beyond the " + format_number(kMaxColor) + " a colour may hold");
       }
@@ -61,7 +66,7 @@ void Loader::check_mesh_attribute_textures() {
     }
     std::string known;
     for (const auto& c : carried) known += (known.empty() ? "" : ", ") + c.first;
-    r.fail(child(texture_places_[t.get()], "name"),
+    r.fail(child(place, "name"),
            "no mesh in the scene carries the attribute \"" + m->name() + "\" (" +
                (known.empty() ? std::string("no mesh carries any: they come from PLY vertex or face properties")
                               : "the meshes carry: " + known) +

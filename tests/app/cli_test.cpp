@@ -108,7 +108,7 @@ TEST_CASE("cli: bad input exits non-zero with a located message and writes no im
       {"--aov without a photon integrator", good, "--aov", "--aov needs a photon integrator"},
       {"negative --spp", good, "--spp -1", "--spp"},
       {"--threads 0", good, "--threads 0", "--threads"},
-      {"unknown integrator", good, "--integrator phton", "unknown integrator \"phton\" (known: "},
+      {"unknown integrator", good, "--integrator phton", "error: unknown integrator \"phton\" (known: "},
       {"unknown integrator in the scene", replaced("\"objects\": [", "\"integrator\": {\"type\": \"frob\"},\n  \"objects\": ["), "",
        "bad.json: /integrator/type: unknown integrator \"frob\" (known: "},
       {"output in a missing folder", good, "-o missing/dir/out.png", "does not exist"},

@@ -266,3 +266,30 @@ TEST_CASE("bitmap: the gradient is the bilinear lookup's derivative, through sRG
   REQUIRE(nearest.gradient(Vec2(0.3f, 0.4f), g));
   CHECK(g == Vec2(0.0f));
 }
+
+TEST_CASE("textures: bitmaps of one file share its texels; a file rewritten is read again", "[core][texture]") {
+  test::TempDir dir;
+  const std::string quad = R"([{"type": "quad", "origin": [-1, -1, 0], "edge1": [2, 0, 0], "edge2": [0, 2, 0], "material": "a"},
+      {"type": "quad", "origin": [3, -1, 0], "edge1": [2, 0, 0], "edge2": [0, 2, 0], "material": "b"}])";
+  const std::string materials = R"({"a": {"type": "diffuse", "reflectance": {"type": "bitmap", "filename": "t.pfm"}},
+      "b": {"type": "diffuse", "reflectance": {"type": "bitmap", "filename": "t.pfm", "filter_type": "nearest"}}})";
+  Image img(2, 2);
+  for (Color& c : img.pixels) c = Color(0.25f);
+  write_image(dir.file("t.pfm"), img);
+  const LoadedScene first = load(dir, quad, materials);
+  std::vector<const BitmapTexture*> bitmaps;
+  for (const auto& t : first.scene->textures) bitmaps.push_back(dynamic_cast<const BitmapTexture*>(t.get()));
+  REQUIRE(bitmaps.size() == 2);
+  REQUIRE(bitmaps[0] != nullptr);
+  REQUIRE(bitmaps[1] != nullptr);
+  CHECK(bitmaps[0]->shares_texels_with(*bitmaps[1]));
+  // The file rewritten (same size, another time) while the first scene lives: read again.
+  for (Color& c : img.pixels) c = Color(0.75f);
+  write_image(dir.file("t.pfm"), img);
+  const LoadedScene second = load(dir, quad, materials);
+  const auto* again = dynamic_cast<const BitmapTexture*>(second.scene->textures[0].get());
+  REQUIRE(again != nullptr);
+  CHECK_FALSE(again->shares_texels_with(*bitmaps[0]));
+  CHECK(again->eval(Vec2(0.5f)) == Color(0.75f));
+  CHECK(bitmaps[0]->eval(Vec2(0.5f)) == Color(0.25f));
+}

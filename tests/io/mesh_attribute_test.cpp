@@ -142,6 +142,15 @@ TEST_CASE("mesh attributes: binary PLY integers of every width normalise as Mits
   CHECK(sa.values[1] == Color(1.0f));
 }
 
+TEST_CASE("mesh attributes: a PLY with two face elements is an error (their attributes would not line up)", "[mesh][texture]") {
+  const std::string ply =
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+      "element face 1\nproperty list uchar int vertex_indices\nproperty uchar r\nproperty uchar g\nproperty uchar b\n"
+      "element face 1\nproperty list uchar int vertex_indices\nend_header\n"
+      "0 0 0\n1 0 0\n0 1 0\n3 0 1 2 1 2 3\n3 0 2 1\n";
+  CHECK(error_of([&] { parse_ply(ply, "two.ply"); }) == "two.ply:19: a second face element");
+}
+
 TEST_CASE("mesh attributes: a non-finite property is an error naming the element", "[mesh][texture]") {
   const std::string ply =
       "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
@@ -210,6 +219,21 @@ TEST_CASE("mesh attributes: bad names and attributes no mesh carries are errors 
   CHECK_THAT(error_of([&] { load_scene(missing.path); }),
              Contains("/materials/b/reflectance/name") &&
                  Contains("no mesh in the scene carries the attribute \"vertex_normal_map\" (the meshes carry: face_color, vertex_color)"));
+}
+
+TEST_CASE("mesh attributes: a light's texture cannot be a mesh attribute", "[mesh][texture]") {
+  test::TempDir dir;
+  dir.write("v.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+                     "property float red\nproperty float green\nproperty float blue\n"
+                     "element face 1\nproperty list uchar int vertex_indices\nend_header\n"
+                     "0 0 0 0.8 0.1 0.2\n1 0 0 0.3 0.6 0.05\n0 1 0 0.1 0.2 0.9\n3 0 1 2\n");
+  const std::string path = dir.write("s.json", R"({"camera": {"position": [0, 0, 5], "look_at": [0, 0, 0]},
+      "materials": {"a": {"type": "diffuse", "reflectance": {"type": "mesh_attribute", "name": "vertex_color"}}},
+      "objects": [{"type": "mesh", "file": "v.ply", "material": "a"}],
+      "lights": [{"type": "spot", "position": [0, 0, 3], "target": [0, 0, 0], "intensity": 1,
+                  "texture": {"type": "mesh_attribute", "name": "vertex_color"}}]})");
+  CHECK_THAT(error_of([&] { load_scene(path); }),
+             Contains("/lights/0/texture") && Contains("a light's texture has no mesh"));
 }
 
 TEST_CASE("mesh attributes: values beyond what a colour may hold are an error at load", "[mesh][texture]") {

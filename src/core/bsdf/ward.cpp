@@ -110,9 +110,12 @@ std::unique_ptr<Bsdf> Ward::create(const Params& p) {
     }
   }
   // The specular lobe's share of samples: its reflectance's luminance over both (a texture
-  // counts as its value at the centre).
+  // counts as its value at the centre). With a texture, each lobe keeps at least a tenth of the
+  // samples: where the texture is not what its centre says (a mesh attribute reads black
+  // there), a lobe must not go unsampled.
   const float s = luminance(specular.at(Vec2(0.5f))), d = luminance(diffuse.at(Vec2(0.5f)));
-  const float p_spec = s + d > 0.0f ? s / (s + d) : 0.5f;
+  float p_spec = s + d > 0.0f ? s / (s + d) : 0.5f;
+  if (specular.texture || diffuse.texture) p_spec = std::clamp(p_spec, 0.1f, 0.9f);
   return std::make_unique<Ward>(variant, au, av, specular, diffuse, p_spec);
 }
 

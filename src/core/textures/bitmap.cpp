@@ -3,6 +3,9 @@
 #include <OpenImageIO/imageio.h>
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <map>
+#include <mutex>
 #include "core/error.h"
 #include "core/image.h"
 #include "core/memory.h"
@@ -30,10 +33,11 @@ int wrap_index(int i, int n, TextureWrap wrap) {
 }
 
 // A texture coordinate times the resolution, as an int-safe value: coordinates far outside
-// [0, 1] wrap the same way, and NaN becomes 0.
-double texel_coordinate(float st, int n) {
+// [0, 1] wrap (or clamp) the same way, and NaN becomes 0.
+double texel_coordinate(float st, int n, TextureWrap wrap) {
   const double x = double(st) * double(n);
   if (!std::isfinite(x)) return 0.0;
+  if (wrap == TextureWrap::Clamp) return std::clamp(x, -1.0, double(n) + 1.0);
   // Beyond 2^30 texels the position is kept within one period of 2n (mirror's period).
   constexpr double kLimit = 1073741824.0;
   return std::abs(x) < kLimit ? x : std::fmod(x, 2.0 * double(n));
@@ -41,9 +45,15 @@ double texel_coordinate(float st, int n) {
 
 }  // namespace
 
-BitmapTexture::BitmapTexture(const std::string& path, TextureFilter filter, TextureWrap wrap, const UvTransform& to_uv,
-                             bool raw)
-    : path_(path), filter_(filter), wrap_(wrap), to_uv_(to_uv) {
+// The decoded image: linear texels, row by row from the top, `stored` channels each.
+struct BitmapTexture::Texels {
+  int width = 0, height = 0, channels = 0, stored = 0;
+  std::vector<float> data;
+};
+
+namespace {
+
+std::shared_ptr<const BitmapTexture::Texels> decode_texels(const std::string& path, bool raw) {
   // Colour as stored, not multiplied by alpha (which OpenImageIO does to PNGs by default):
   // Mitsuba drops the alpha channel of a texture and keeps the colour as it is.
   OIIO::ImageSpec config;
@@ -51,48 +61,80 @@ BitmapTexture::BitmapTexture(const std::string& path, TextureFilter filter, Text
   auto in = OIIO::ImageInput::open(path, &config);
   if (!in) throw InputError(path + ": cannot read the texture: " + OIIO::geterror());
   const OIIO::ImageSpec& spec = in->spec();
-  width_ = spec.width;
-  height_ = spec.height;
+  auto t = std::make_shared<BitmapTexture::Texels>();
+  t->width = spec.width;
+  t->height = spec.height;
   // The colour channels: all but alpha, as Mitsuba's bitmap (grey-alpha is grey, RGBA is RGB).
-  channels_ = spec.nchannels - (spec.alpha_channel >= 0 && spec.nchannels > 1 ? 1 : 0);
-  if (width_ <= 0 || height_ <= 0 || channels_ <= 0) throw InputError(path + ": the texture has no pixels");
-  if (spec.alpha_channel >= 0 && spec.alpha_channel < channels_) {
+  t->channels = spec.nchannels - (spec.alpha_channel >= 0 && spec.nchannels > 1 ? 1 : 0);
+  if (t->width <= 0 || t->height <= 0 || t->channels <= 0) throw InputError(path + ": the texture has no pixels");
+  if (t->width > (1 << 30) || t->height > (1 << 30)) throw InputError(path + ": the texture is wider or taller than 2^30 texels");
+  if (spec.alpha_channel >= 0 && spec.alpha_channel < t->channels) {
     throw InputError(path + ": the texture's alpha channel comes before its colour channels");
   }
-  stored_ = std::min(channels_, 3);
-  const double texels = double(width_) * double(height_);
-  check_memory(texels * stored_ * sizeof(float),
-               path + " (" + std::to_string(width_) + " x " + std::to_string(height_) + " texels)");
+  t->stored = std::min(t->channels, 3);
+  const double texels = double(t->width) * double(t->height);
+  check_memory(texels * t->stored * sizeof(float),
+               path + " (" + std::to_string(t->width) + " x " + std::to_string(t->height) + " texels)");
   // Decoded once, here: a file that does not decode, or holds NaN, infinite or too bright
   // texels, is an error at load; lookups read memory and never the file again.
-  texels_.resize(size_t(texels) * size_t(stored_));
-  if (!in->read_image(0, 0, 0, stored_, OIIO::TypeDesc::FLOAT, texels_.data())) {
+  t->data.resize(size_t(texels) * size_t(t->stored));
+  if (!in->read_image(0, 0, 0, t->stored, OIIO::TypeDesc::FLOAT, t->data.data())) {
     throw InputError(path + ": cannot decode the texture: " + in->geterror());
   }
   // 8- and 16-bit images hold display-referred sRGB values unless declared raw; they are
   // decoded to linear here, so that filtering interpolates linear values, as Mitsuba's does.
   const bool srgb = !raw && (spec.format == OIIO::TypeDesc::UINT8 || spec.format == OIIO::TypeDesc::UINT16);
-  for (size_t i = 0; i < texels_.size(); ++i) {
-    float& v = texels_[i];
+  for (size_t i = 0; i < t->data.size(); ++i) {
+    float& v = t->data[i];
     if (!std::isfinite(v) || std::abs(v) > kMaxColor) {
-      const size_t texel = i / size_t(stored_);
-      const std::string at = "(" + std::to_string(texel % size_t(width_)) + ", " + std::to_string(texel / size_t(width_)) + ")";
+      const size_t texel = i / size_t(t->stored);
+      const std::string at =
+          "(" + std::to_string(texel % size_t(t->width)) + ", " + std::to_string(texel / size_t(t->width)) + ")";
       if (!std::isfinite(v)) throw InputError(path + ": NaN or infinite texel at " + at);
       throw InputError(path + ": the texel at " + at + " is " + format_number(v) + ", beyond the " +
                        format_number(kMaxColor) + " a colour may hold");
     }
     if (srgb) v = srgb_to_linear(v);
   }
+  return t;
+}
+
+// Bitmaps of one file share its texels while any of them lives (an OBJ's materials often name
+// one texture atlas): keyed by the path, raw, and the file's size and time, so that a file
+// rewritten between loads is read again.
+std::shared_ptr<const BitmapTexture::Texels> shared_texels(const std::string& path, bool raw) {
+  static std::mutex mutex;
+  static std::map<std::string, std::weak_ptr<const BitmapTexture::Texels>> cache;
+  std::error_code ec;
+  const auto size = std::filesystem::file_size(path, ec);
+  const auto time = std::filesystem::last_write_time(path, ec).time_since_epoch().count();
+  const std::string key = path + '\n' + (raw ? "raw" : "srgb") + '\n' + std::to_string(size) + '\n' + std::to_string(time);
+  std::lock_guard<std::mutex> lock(mutex);
+  if (auto t = cache[key].lock()) return t;
+  auto t = decode_texels(path, raw);
+  cache[key] = t;
+  return t;
+}
+
+}  // namespace
+
+BitmapTexture::BitmapTexture(const std::string& path, TextureFilter filter, TextureWrap wrap, const UvTransform& to_uv,
+                             bool raw)
+    : path_(path), texels_(shared_texels(path, raw)), filter_(filter), wrap_(wrap), to_uv_(to_uv) {
+  width_ = texels_->width;
+  height_ = texels_->height;
+  channels_ = texels_->channels;
+  stored_ = texels_->stored;
 }
 
 Color BitmapTexture::texel(int x, int y) const {
-  const float* t = &texels_[(size_t(wrap_index(y, height_, wrap_)) * size_t(width_) + size_t(wrap_index(x, width_, wrap_))) *
+  const float* t = &texels_->data[(size_t(wrap_index(y, height_, wrap_)) * size_t(width_) + size_t(wrap_index(x, width_, wrap_))) *
                             size_t(stored_)];
   return stored_ == 1 ? Color(t[0]) : stored_ == 2 ? Color(t[0], t[1], 0.0f) : Color(t[0], t[1], t[2]);
 }
 
 void BitmapTexture::lookup(const Vec2& st, Color& c, Color* ds, Color* dt) const {
-  const double x = texel_coordinate(st.x, width_), y = texel_coordinate(st.y, height_);
+  const double x = texel_coordinate(st.x, width_, wrap_), y = texel_coordinate(st.y, height_, wrap_);
   if (filter_ == TextureFilter::Nearest) {
     c = texel(int(std::floor(x)), int(std::floor(y)));
     if (ds) *ds = *dt = Color(0.0f);

@@ -28,6 +28,9 @@ class BitmapTexture final : public Texture {
   bool gradient(const Vec2& uv, Vec2& grad) const override;
   int width() const { return width_; }
   int height() const { return height_; }
+  struct Texels;
+  // Whether two bitmaps share one decoded image (bitmaps of one file do).
+  bool shares_texels_with(const BitmapTexture& other) const { return texels_ == other.texels_; }
 
  private:
   // The linear colour at image coordinates st (after to_uv), and with ds and dt its
@@ -36,8 +39,8 @@ class BitmapTexture final : public Texture {
   // The texel at (x, y), wrapped.
   Color texel(int x, int y) const;
   std::string path_;
-  std::vector<float> texels_;  // linear, row by row from the top, `stored_` channels each
-  int stored_ = 3;             // the colour channels kept (at most 3)
+  std::shared_ptr<const Texels> texels_;  // decoded once, shared by the bitmaps of one file
+  int stored_ = 3;                        // the colour channels kept (at most 3)
   TextureFilter filter_;
   TextureWrap wrap_;
   UvTransform to_uv_;

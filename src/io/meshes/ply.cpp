@@ -105,10 +105,11 @@ std::vector<AttributeGroup> mesh_attribute_groups(const std::vector<Property>& p
     while (end < props.size() && prefix_of(end) == prefix) ++end;
     const size_t n = end - k;
     const char* first = std::strchr(kPostfix[0], props[k].name.back());
-    bool ok = seen.insert(prefix).second && first && (n == 1 || n == 3);
+    bool ok = !seen.count(prefix) && first && (n == 1 || n == 3);
     const size_t category = first ? size_t(first - kPostfix[0]) : 0;
     for (size_t i = 0; ok && i < n; ++i) ok = props[k + i].name.back() == kPostfix[i][category];
     if (ok) {
+      seen.insert(prefix);  // as Mitsuba: only an accepted prefix blocks a later run of it
       AttributeGroup group{type + prefix + (category == 1 ? "_color" : ""), {}};
       for (size_t i = 0; i < n; ++i) group.props.push_back(k + i);
       out.push_back(group);
@@ -137,7 +138,7 @@ class Reader {
     MeshData mesh;
     std::vector<Vec3> normals;
     std::vector<Vec2> uvs;
-    bool have_vertices = false;
+    bool have_vertices = false, have_faces = false;
     for (const Element& e : elements_) {
       if (e.name == "vertex") {
         if (have_vertices) fail("a second vertex element");
@@ -145,6 +146,8 @@ class Reader {
         vertices(e, mesh, normals, uvs);
       } else if (e.name == "face") {
         if (!have_vertices) fail("the face element comes before the vertex element");
+        if (have_faces) fail("a second face element");
+        have_faces = true;
         faces(e, mesh, normals, uvs);
       } else {
         for (uint64_t i = 0; i < e.count; ++i) {
