@@ -131,12 +131,6 @@ struct SceneFlags {
   }
 };
 
-std::string integrator_list() {
-  std::string s;
-  for (const auto& n : integrator_names()) s += (s.empty() ? "" : ", ") + n;
-  return s;
-}
-
 // Each item of a comma-separated list of integrators: a name, with settings after it
 // (photon:progressive=false, checked when the integrator is made), or only settings for the
 // scene's own integrator (:max_depth=3).
@@ -149,10 +143,8 @@ const CLI::Validator kIntegratorName(
       }
       const std::string name = item.substr(0, item.find(':'));
       if (name.empty()) return std::string();
-      for (const auto& n : integrator_names()) {
-        if (n == name) return std::string();
-      }
-      return "unknown integrator \"" + name + "\" (known: " + integrator_list() + ")";
+      if (find_integrator_plugin(name)) return std::string();
+      return "unknown integrator \"" + name + "\" (known: " + known_integrators() + ")";
     },
     "INTEGRATOR");
 
@@ -168,7 +160,7 @@ int run_cli(int argc, char** argv) {
   CLI::App* render = app.add_subcommand("render", "Render a scene file to an image");
   render_flags.add(render, args.common, true);
   render->add_option("-o,--output", args.output, "Output image (.png, .exr, .hdr, .pfm); default: SCENE_NAME.png");
-  render->add_option("--integrator", args.integrator, "Integrator: " + integrator_list());
+  render->add_option("--integrator", args.integrator, "Integrator: " + known_integrators());
   render->add_option("--time", args.time, "Time budget in seconds: render whole passes until it is spent")
       ->check(kFinite & kPositive);
   render->add_option("--exposure", args.exposure, "Exposure in stops for PNG output")

@@ -89,18 +89,14 @@ void report_new_warnings(const std::vector<std::string>& fresh, std::vector<std:
   }
 }
 
-std::vector<std::string> integrator_names() {
-  std::vector<std::string> names;
-  for (const IntegratorPlugin& p : integrator_plugins()) names.push_back(p.name);
-  return names;
-}
+std::string known_integrators() { return plugin_names(integrator_plugins()); }
 
 std::unique_ptr<Integrator> create_integrator(const std::string& type, const JsonSource& settings,
                                               const RenderSettings& render) {
   const IntegratorPlugin* row = find_integrator_plugin(type);
   const SourceParams params(settings);
   if (!row) {
-    const std::string message = "unknown integrator \"" + type + "\" (known: " + plugin_names(integrator_plugins()) + ")";
+    const std::string message = "unknown integrator \"" + type + "\" (known: " + known_integrators() + ")";
     // A type the scene file names: said with the file and the place.
     if (!settings.file.empty()) params.reader().fail(settings.pointer + "/type", message);
     throw InputError(message);

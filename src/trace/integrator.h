@@ -94,6 +94,7 @@ void report_new_warnings(const std::vector<std::string>& fresh, std::vector<std:
 // Throws InputError listing the valid names when `type` is unknown.
 std::unique_ptr<Integrator> create_integrator(const std::string& type, const JsonSource& settings,
                                               const RenderSettings& render);
-std::vector<std::string> integrator_names();
+// The integrators by name, comma-separated, for messages and help.
+std::string known_integrators();
 
 }  // namespace caustica
