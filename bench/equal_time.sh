@@ -7,7 +7,9 @@
 # Usage: bash bench/equal_time.sh [SCENE ...]     (default: the set below)
 # Environment: REF_SPP (path references, default 4096), TIME (seconds per integrator, 120),
 # CHECKPOINTS (10,30,120), THREADS (2), SIZE (e.g. 256x256; default: each scene's own),
-# MITSUBA_DATA (a checkout of mitsuba-data: adds its matpreview scene, which we do not ship).
+# INTEGRATORS (photon,sppm,path; variants as photon:caustic_threshold=1),
+# MITSUBA_DATA (a checkout of mitsuba-data: adds Mitsuba's own scenes, which we do not ship:
+# its documentation's material preview with rough copper and with glass, and hello.xml).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/build.sh >/dev/null
@@ -18,15 +20,21 @@ ref_spp=${REF_SPP:-4096}
 time_budget=${TIME:-120}
 checkpoints=${CHECKPOINTS:-10,30,120}
 threads=${THREADS:-2}
+integrators=${INTEGRATORS:-photon,sppm,path}
 size=()
 if [ -n "${SIZE:-}" ]; then size=(--width "${SIZE%x*}" --height "${SIZE#*x}"); fi
 
 if [ $# -gt 0 ]; then
   scenes=("$@")
 else
-  scenes=(scenes/cornell-spheres.json scenes/caustic-ring.json scenes/glossy-cornell.json
+  # Made by bench/scenes/make_bench_scenes.py and make_cornell_recessed.py, and our own scenes.
+  scenes=(bench/scenes/env-preview.json bench/scenes/glass-env.json bench/scenes/veach-mis.json
+          scenes/glossy-cornell.json scenes/cornell-spheres.json scenes/caustic-ring.json
           bench/scenes/cornell-recessed.json scenes/mitsuba/principled.xml scenes/mitsuba/mesh-attributes.xml)
-  if [ -n "${MITSUBA_DATA:-}" ]; then scenes+=("$MITSUBA_DATA/scenes/matpreview/matpreview.xml"); fi
+  if [ -n "${MITSUBA_DATA:-}" ]; then
+    scenes+=("$MITSUBA_DATA/docs/scenes/bsdf_roughconductor_copper.xml" "$MITSUBA_DATA/docs/scenes/bsdf_dielectric_glass.xml"
+             "$MITSUBA_DATA/scenes/hello.xml")
+  fi
 fi
 
 for scene in "${scenes[@]}"; do
@@ -47,7 +55,7 @@ for scene in "${scenes[@]}"; do
     fi
     refs+=(--reference "$ref")
   done
-  $C converge "$scene" "${refs[@]}" --integrators photon,sppm,path --time "$time_budget" \
+  $C converge "$scene" "${refs[@]}" --integrators "$integrators" --time "$time_budget" \
     --checkpoints "$checkpoints" --threads "$threads" "${size[@]}" --out "$R/$name" -q
   echo "== $name"
   cat "$R/$name/convergence.csv"

@@ -32,13 +32,15 @@ struct Aim {
 
 class Emitter {
  public:
-  Emitter(const Scene& scene, bool caustic, float glossy_threshold)
+  Emitter(const Scene& scene, bool caustic, const PhotonPassSettings& s)
       : scene_(scene), caustic_(caustic), scene_radius_(0.5f * glm::length(scene.bounds().extent())) {
     for (const ObjectInfo& o : scene.objects) {
       const Bsdf& m = *scene.materials[o.material];
       // Not at surfaces that scatter nothing (Mitsuba's null): photons pass through them.
       if (m.flags() == 0) continue;
-      if (!is_gather_surface(m, glossy_threshold) || m.has(kBsdfSpecular)) targets_.push_back({o.centre, o.radius});
+      const bool gather = is_gather_surface(m, s.glossy_threshold);
+      if ((!gather && is_caustic_surface(m, s.caustic_threshold)) || (gather && m.has(kBsdfSpecular)))
+        targets_.push_back({o.centre, o.radius});
     }
   }
   bool has_targets() const { return !targets_.empty(); }
@@ -145,6 +147,9 @@ void trace_photon(const Scene& scene, Ray ray, Color flux, bool caustic, const P
       }
       out.push_back({hit.p, flux, wo, n_side, depth});
     }
+    // A soft surface (rough glossy, not a gather surface) ends a caustic photon: the light it
+    // passes on to a gather point is the final gather's.
+    if (caustic && !gather && !is_caustic_surface(m, s.caustic_threshold)) return;
     BsdfSample bs;
     const Vec2 u(rng.next_float(), rng.next_float());
     if (!m.sample(wo_l, u, rng.next_float(), bs, hit.sp)) return;
@@ -175,7 +180,7 @@ std::vector<Photon> run_map(const Scene& scene, const PhotonPassSettings& s, boo
   emitted_out = 0;
   const size_t wanted = caustic ? s.caustic_photons : s.global_photons;
   if (wanted == 0 || scene.lights.empty()) return result;
-  const Emitter emitter(scene, caustic, s.glossy_threshold);
+  const Emitter emitter(scene, caustic, s);
   if (caustic && !emitter.has_targets()) return result;
   // Cap on emission, so a scene that stores (almost) nothing still ends.
   const uint64_t cap = uint64_t(wanted) * (caustic ? 200 : 50) + 1000000;

@@ -13,6 +13,9 @@ struct PhotonPassSettings {
   size_t caustic_photons = 200000;  // stored photons wanted in the caustic map (0: no caustic map)
   int max_depth = 16;               // bounces per photon path
   float glossy_threshold = 0.3f;    // photons are stored on glossy lobes at least this rough
+  // Caustic photons pass only surfaces with a delta lobe or glossy ones smoother than this
+  // (is_caustic_surface); the default keeps every surface that is not a gather surface.
+  float caustic_threshold = 1e30f;
   uint64_t seed = 0;
   const std::atomic<bool>* cancel = nullptr;  // once set, the pass stops within a chunk and keeps no photons
 };

@@ -41,6 +41,7 @@ PhotonSettings PhotonSettings::read(const Params& p, const RenderSettings& rende
   integer("direct_samples", s.direct_samples, 1, 1 << 16);
   integer("irradiance_stride", s.irradiance_stride, 0, 1 << 20);
   number("glossy_threshold", s.glossy_threshold);
+  number("caustic_threshold", s.caustic_threshold);
   s.alpha = float(p.number_in("alpha", s.alpha, 1e-3, 0.999));
   return s;
 }
@@ -116,6 +117,7 @@ bool PhotonIntegrator::build_maps(const Scene& scene, uint64_t seed, const Prepr
   pass.caustic_photons = final_gather_ ? settings_.caustic_photons : 0;
   pass.max_depth = settings_.max_depth;
   pass.glossy_threshold = settings_.glossy_threshold;
+  pass.caustic_threshold = final_gather_ ? settings_.caustic_threshold : pass.caustic_threshold;
   pass.seed = seed;
   pass.cancel = context.cancel;
   PhotonPassResult r = trace_photons(scene, pass);
@@ -168,20 +170,23 @@ Color PhotonIntegrator::final_gather(const Scene& scene, const SurfaceHit& hit, 
     if (hit.leaks(wi)) continue;
     Color throughput = bs.weight;
     Ray ray = spawn_ray(hit.p, hit.n, wi);
-    const BsdfVertex from{bs.delta, gather_ratio() * bs.pdf, hit.p};
+    BsdfVertex from{bs.delta, gather_ratio() * bs.pdf, hit.p};
+    // The emission a segment reaches is the gather's when the segment starts at the gather
+    // point (direct light, shared with the shadow rays by MIS) or when a soft surface lies
+    // between; through caustic surfaces alone it is the caustic map's.
+    bool counts_emission = true, past_soft = false;
     // The gather ray's vertices are eye vertices eye_depth + 1, + 2, ...; at eye vertex
-    // max_depth only the first segment's emission still fits in the path.
+    // max_depth only the last segment's emission still fits in the path.
     for (int depth = 0; eye_depth + 1 + depth <= settings_.max_depth; ++depth) {
       SurfaceHit g;
       ++sampler.rays;
-      // The first segment's emission is direct light, shared with the shadow rays by MIS;
-      // emission reached through specular surfaces after it is the caustic map's.
       if (!scene.intersect(ray, g)) {
-        if (depth == 0) sum += throughput * escaped_mis(scene, ray.dir, from);
+        if (counts_emission) sum += throughput * escaped_mis(scene, ray.dir, from);
         break;
       }
       const Bsdf& m = *g.material;
-      if (depth == 0) sum += throughput * emission_mis(scene, g, scene.emitted(g, g.frame.to_local(-ray.dir)), from);
+      if (counts_emission)
+        sum += throughput * emission_mis(scene, g, scene.emitted(g, g.frame.to_local(-ray.dir)), from);
       if (eye_depth + 1 + depth == settings_.max_depth) break;
       if (is_gather_surface(m, settings_.glossy_threshold)) {
         sum += throughput * indirect_at(g, -ray.dir, scratch, eye_depth + 1 + depth);
@@ -192,16 +197,24 @@ Color PhotonIntegrator::final_gather(const Scene& scene, const SurfaceHit& hit, 
         const Vec3 cwi = g.frame.to_world(coat[0].wi);
         if (g.leaks(cwi)) break;
         throughput *= coat[0].weight;
+        from = BsdfVertex{};
+        counts_emission = past_soft;
         ray = spawn_ray(g.p, g.n, cwi);
         continue;
       }
+      const Vec3 gwo = -ray.dir;
+      // From a soft surface on, the gather path is a path tracer's: shadow rays at its glossy
+      // vertices, MIS-weighted against the emission the next segment reaches.
+      past_soft = past_soft || !is_caustic_surface(m, settings_.caustic_threshold);
+      if (past_soft && !m.is_specular()) sum += throughput * estimate_direct(scene, g, gwo, sampler, 1.0f);
       BsdfSample ss;
-      const Vec3 gwo = g.frame.to_local(-ray.dir);
       const Vec2 us = sampler.next2d();
-      if (!m.sample(gwo, us, sampler.next1d(), ss, g.sp)) break;
+      if (!m.sample(g.frame.to_local(gwo), us, sampler.next1d(), ss, g.sp)) break;
       const Vec3 gwi = g.frame.to_world(ss.wi);
       if (g.leaks(gwi)) break;
       throughput *= ss.weight;
+      from = BsdfVertex{ss.delta, ss.pdf, g.p};
+      counts_emission = past_soft;
       ray = spawn_ray(g.p, g.n, gwi);
     }
   }

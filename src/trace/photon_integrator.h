@@ -21,6 +21,10 @@ struct PhotonSettings : MonteCarloSettings {
   // Photons are stored, and eye paths stop to gather, on a diffuse lobe or a glossy lobe at
   // least this rough (microfacet alpha); smoother glossy surfaces are traced through.
   float glossy_threshold = 0.3f;
+  // Of the surfaces traced through, those with a delta lobe or glossy lobes smoother than this
+  // carry caustic photons; light through the rougher (soft) ones is final-gathered, with shadow
+  // rays at the soft vertex (gather.h).
+  float caustic_threshold = 0.05f;
   // Progressive photon mapping (Knaus and Zwicker 2011): every pass traces fresh maps of the
   // counts above and estimates within fixed radii that shrink as r_i^2 = r_1^2 prod (j + alpha) / (j + 1).
   // The default since it measured better at equal time at 10 to 120 s (BENCHMARKS.md).

@@ -33,31 +33,47 @@ TEST_CASE("photon: identical pixels for 1 and 2 threads", "[trace][photon][deter
   CHECK(one.image.pixels == two.image.pixels);
 }
 
-// photon against a high-spp path render of a scene file: mean within 3 %, each region of a
-// 4x4 grid within region_tolerance.
-static void check_photon_against_path(const char* file, int width, int height, int path_spp, int photon_spp,
-                                      const char* photon_settings, double region_tolerance) {
-  const std::string scene = test::read_scene_file(file);
-  // Files the scene names are found from its folder.
-  const std::string dir = (std::filesystem::path(CAUSTICA_SOURCE_DIR) / file).parent_path().string();
-  const auto ref = render_text(scene, "path", "{}", path_spp, width, height, 3, 0, dir);
-  const auto pm = render_text(scene, "photon", photon_settings, photon_spp, width, height, 4, 0, dir);
-  const glm::dvec3 ref_mean = region_mean(ref.image, 0, 0, width, height);
-  const glm::dvec3 pm_mean = region_mean(pm.image, 0, 0, width, height);
+// The photon image against the path image: mean within 3 %, each region of a 4x4 grid within
+// region_tolerance.
+static void check_photon_matches(const Image& ref_image, const Image& pm_image, const char* file,
+                                 double region_tolerance) {
+  const int width = ref_image.width, height = ref_image.height;
+  const glm::dvec3 ref_mean = region_mean(ref_image, 0, 0, width, height);
+  const glm::dvec3 pm_mean = region_mean(pm_image, 0, 0, width, height);
   INFO(file << ": path " << ref_mean.x << " " << ref_mean.y << " " << ref_mean.z << "; photon " << pm_mean.x << " "
             << pm_mean.y << " " << pm_mean.z);
   for (int c = 0; c < 3; ++c) CHECK(pm_mean[c] == Approx(ref_mean[c]).epsilon(0.03));
   const int cw = width / 4, ch = height / 4;
   for (int gy = 0; gy < 4; ++gy) {
     for (int gx = 0; gx < 4; ++gx) {
-      const glm::dvec3 a = region_mean(ref.image, gx * cw, gy * ch, (gx + 1) * cw, (gy + 1) * ch);
-      const glm::dvec3 b = region_mean(pm.image, gx * cw, gy * ch, (gx + 1) * cw, (gy + 1) * ch);
+      const glm::dvec3 a = region_mean(ref_image, gx * cw, gy * ch, (gx + 1) * cw, (gy + 1) * ch);
+      const glm::dvec3 b = region_mean(pm_image, gx * cw, gy * ch, (gx + 1) * cw, (gy + 1) * ch);
       const double la = (a.x + a.y + a.z) / 3, lb = (b.x + b.y + b.z) / 3;
       INFO("region " << gx << "," << gy << ": path " << la << " photon " << lb);
       // Regions that are nearly black (a background) are compared to the image's mean.
       CHECK(lb == Approx(la).epsilon(region_tolerance).margin(0.002 * (ref_mean.x + ref_mean.y + ref_mean.z) / 3));
     }
   }
+}
+
+// photon against a high-spp path render of a scene file, each of several photon settings.
+static void check_photon_against_path(const char* file, int width, int height, int path_spp, int photon_spp,
+                                      const std::vector<const char*>& photon_settings, double region_tolerance) {
+  const std::string scene = test::read_scene_file(file);
+  // Files the scene names are found from its folder.
+  const std::string dir = (std::filesystem::path(CAUSTICA_SOURCE_DIR) / file).parent_path().string();
+  const auto ref = render_text(scene, "path", "{}", path_spp, width, height, 3, 0, dir);
+  for (const char* settings : photon_settings) {
+    INFO(settings);
+    check_photon_matches(ref.image, render_text(scene, "photon", settings, photon_spp, width, height, 4, 0, dir).image,
+                         file, region_tolerance);
+  }
+}
+
+static void check_photon_against_path(const char* file, int width, int height, int path_spp, int photon_spp,
+                                      const char* photon_settings, double region_tolerance) {
+  check_photon_against_path(file, width, height, path_spp, photon_spp, std::vector<const char*>{photon_settings},
+                            region_tolerance);
 }
 
 TEST_CASE("photon: matches the path tracer on the Cornell box (mean 3 %, 4x4 regions 5 %)", "[trace][photon][reference]") {
@@ -69,11 +85,49 @@ TEST_CASE("photon: matches the path tracer on the glossy Cornell box (Phong floo
                             R"({"gather_rays": 16, "photons": 50000, "caustic_photons": 50000})", 0.06);
 }
 
-TEST_CASE("photon: matches the path tracer on the material spheres", "[trace][photon][reference]") {
+TEST_CASE("photon: matches the path tracer on the material spheres, the light through rough glossy surfaces either map's", "[trace][photon][reference]") {
   // The rough metals' highlights of the sun need more camera samples than the diffuse scenes;
   // each progressive pass traces its own maps, so a pass's maps are small.
+  // caustic_threshold moves the light that reaches diffuse surfaces through the rough copper,
+  // the brushed aluminium and the frosted glass (alpha 0.05 to 0.4) between the two estimators:
+  // at 1 all of it is the caustic map's (no shadow rays at those surfaces), at 0 all of it the
+  // final gather's (no caustic photons through them). A path counted twice or never would show.
   check_photon_against_path("scenes/material-spheres.json", 96, 32, 4096, 256,
-                            R"({"gather_rays": 16, "photons": 20000, "caustic_photons": 20000})", 0.06);
+                            {R"({"gather_rays": 16, "photons": 20000, "caustic_photons": 20000})",
+                             R"({"gather_rays": 16, "photons": 20000, "caustic_photons": 20000, "caustic_threshold": 1})",
+                             R"({"gather_rays": 16, "photons": 20000, "caustic_photons": 20000, "caustic_threshold": 0})"},
+                            0.06);
+}
+
+TEST_CASE("photon: a spot light seen only in a rough metal wall lights the floor alike through either map", "[trace][photon][reference]") {
+  // The spot aims at a rough aluminium wall (alpha 0.15) and never at the floor: all the
+  // floor's light comes through the wall. With caustic_threshold 1 the caustic map carries it;
+  // with 0 (as by default, 0.05) the final gather, whose rays cannot hit a point light: only the
+  // shadow rays at the wall (a soft vertex) find it.
+  const std::string scene = R"({
+    "camera": {"position": [0, 5, 0.3], "look_at": [0.4, 0, 0], "fov": 45},
+    "render": {"width": 32, "height": 32, "spp": 1},
+    "materials": {"floor": {"type": "diffuse", "albedo": 0.8},
+                  "metal": {"type": "roughconductor", "material": "Al", "distribution": "ggx", "alpha": 0.15}},
+    "objects": [{"type": "quad", "origin": [-2, 0, -2], "edge1": [0, 0, 4], "edge2": [4, 0, 0], "material": "floor"},
+                {"type": "quad", "origin": [2, 0, -2], "edge1": [0, 3, 0], "edge2": [0, 0, 4], "material": "metal"}],
+    "lights": [{"type": "spot", "position": [-1.5, 2.6, 0], "target": [2, 2.3, 0], "intensity": 600, "cutoff_angle": 10}]
+  })";
+  const auto ref = render_text(scene, "path", "{}", 4096, 24, 24, 3);
+  REQUIRE(ref.image.mean().x > 0.02f);
+  for (const char* settings : {R"({"photons": 10000, "caustic_photons": 10000, "caustic_threshold": 1})",
+                               R"({"photons": 10000, "caustic_photons": 10000, "caustic_threshold": 0})"}) {
+    INFO(settings);
+    const Image pm = render_text(scene, "photon", settings, 48, 24, 24, 4).image;
+    CHECK(pm.mean().x == Approx(ref.image.mean().x).epsilon(0.03));
+    // The four quarters, from the floor's brightest to its darkest (a quarter of the mean).
+    for (int q = 0; q < 4; ++q) {
+      const int x0 = (q % 2) * 12, y0 = (q / 2) * 12;
+      INFO("quarter " << q);
+      CHECK(region_mean(pm, x0, y0, x0 + 12, y0 + 12).x ==
+            Approx(region_mean(ref.image, x0, y0, x0 + 12, y0 + 12).x).epsilon(0.05));
+    }
+  }
 }
 
 TEST_CASE("photon: matches the path tracer on the Mitsuba metals under a textured light", "[trace][photon][reference]") {
