@@ -12,6 +12,7 @@ namespace caustica {
 namespace {
 
 constexpr uint64_t kChunk = 4096;  // emitted photons per chunk
+constexpr uint64_t kCausticShare = 10;  // caustic emission at most this times the global's
 
 struct PendingPhoton {
   Vec3 position;
@@ -68,11 +69,7 @@ class Emitter {
       if (!light->sample_travel(u_dir, dir, value)) return false;
       const Vec3 p = point_on_disc(targets_[j].centre, dir, targets_[j].radius, u_pos);
       float pdf_pos = 0;
-      for (const Aim& a : targets_) {
-        const Vec3 d = p - a.centre;
-        const float off2 = glm::dot(d, d) - glm::dot(d, dir) * glm::dot(d, dir);
-        if (off2 <= a.radius * a.radius) pdf_pos += 1.0f / (kPi * a.radius * a.radius);
-      }
+      for (const Aim& a : targets_) pdf_pos += disc_pdf(p, dir, a);
       pdf_pos /= float(targets_.size());
       if (pdf_pos <= 0 || is_black(value)) return false;
       flux = value / (pdf_pos * pmf);
@@ -94,6 +91,14 @@ class Emitter {
   }
 
  private:
+  // The density of a point on the disc that sphere `a` casts across direction dir.
+  static float disc_pdf(const Vec3& p, const Vec3& dir, const Aim& a) {
+    const Vec3 d = p - a.centre;
+    const float along = glm::dot(d, dir);
+    const float off2 = glm::dot(d, d) - along * along;
+    return off2 <= a.radius * a.radius ? 1.0f / (kPi * a.radius * a.radius) : 0.0f;
+  }
+
   static bool inside(const Vec3& o, const Aim& a, float& d, float& cos_max) {
     d = glm::length(a.centre - o);
     if (d <= a.radius * 1.0001f) return true;
@@ -174,16 +179,21 @@ void trace_photon(const Scene& scene, Ray ray, Color flux, bool caustic, const P
 bool stop_requested(const PhotonPassSettings& s) { return s.cancel && s.cancel->load(std::memory_order_relaxed); }
 
 // Emits photons until `wanted` are stored; returns them normalised by the number emitted.
-std::vector<Photon> run_map(const Scene& scene, const PhotonPassSettings& s, bool caustic, uint64_t& emitted_out,
-                            float& flux_scale, std::vector<std::string>& warnings) {
+// `global_emitted`: the global map's emission this pass, which bounds the caustic map's.
+std::vector<Photon> run_map(const Scene& scene, const PhotonPassSettings& s, bool caustic, uint64_t global_emitted,
+                            uint64_t& emitted_out, float& flux_scale, std::vector<std::string>& warnings) {
   std::vector<Photon> result;
   emitted_out = 0;
   const size_t wanted = caustic ? s.caustic_photons : s.global_photons;
   if (wanted == 0 || scene.lights.empty()) return result;
   const Emitter emitter(scene, caustic, s);
   if (caustic && !emitter.has_targets()) return result;
-  // Cap on emission, so a scene that stores (almost) nothing still ends.
-  const uint64_t cap = uint64_t(wanted) * (caustic ? 200 : 50) + 1000000;
+  // Cap on emission, so a scene that stores (almost) nothing still ends. Caustic photons that
+  // mostly escape (mirrors that face away from every diffuse surface) stop at kCausticShare
+  // times the global map's emission: past it they would cost a pass many times its eye part
+  // for a map too sparse to matter.
+  uint64_t cap = uint64_t(wanted) * (caustic ? 200 : 50) + 1000000;
+  if (caustic && global_emitted > 0) cap = std::min(cap, std::max<uint64_t>(kCausticShare * global_emitted, uint64_t(1) << 18));
   const uint64_t stream = caustic ? 1 : 0;
 
   // Each chunk's stored photons, in photon-index order, trimmed to what the wanted count keeps.
@@ -280,9 +290,9 @@ void check_photon_memory(size_t photons) {
 PhotonPassResult trace_photons(const Scene& scene, const PhotonPassSettings& settings) {
   const auto t0 = std::chrono::steady_clock::now();
   PhotonPassResult r;
-  r.global = run_map(scene, settings, false, r.global_emitted, r.global_scale, r.warnings);
+  r.global = run_map(scene, settings, false, 0, r.global_emitted, r.global_scale, r.warnings);
   if (!stop_requested(settings))
-    r.caustic = run_map(scene, settings, true, r.caustic_emitted, r.caustic_scale, r.warnings);
+    r.caustic = run_map(scene, settings, true, r.global_emitted, r.caustic_emitted, r.caustic_scale, r.warnings);
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return r;
 }

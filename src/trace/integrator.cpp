@@ -86,9 +86,12 @@ MonteCarloSettings read_monte_carlo(const Params& p, const RenderSettings& rende
 
 void report_new_warnings(const std::vector<std::string>& fresh, std::vector<std::string>& seen, bool quiet) {
   for (const std::string& w : fresh) {
-    if (std::find(seen.begin(), seen.end(), w) != seen.end()) continue;
+    // One warning per subject (the text before its colon): every progressive pass would
+    // otherwise repeat "caustic photon map: only N of M stored" with its own N.
+    const std::string subject = w.substr(0, w.find(':'));
+    if (std::find(seen.begin(), seen.end(), subject) != seen.end()) continue;
     if (!quiet) std::cerr << "warning: " << w << "\n";
-    seen.push_back(w);
+    seen.push_back(subject);
   }
 }
 

@@ -86,8 +86,9 @@ std::string integrator_flag(const std::string& key);
 // The names of the integrators whose row lists `key`, e.g. "photon, photon-direct".
 std::string integrators_reading(const std::string& key);
 
-// Prints (unless quiet) and records the warnings of `fresh` not already in `seen`: a
-// progressive integrator's passes repeat the photon pass's warnings.
+// Prints (unless quiet) the warnings of `fresh` whose subject (the text before the colon) is not
+// in `seen`, and records their subjects: a progressive integrator's passes repeat the photon
+// pass's warnings, each with its own numbers.
 void report_new_warnings(const std::vector<std::string>& fresh, std::vector<std::string>& seen, bool quiet);
 
 // Creates the integrator `type`, reading its settings (unknown keys are errors).

@@ -31,6 +31,8 @@ PhotonSettings PhotonSettings::read(const Params& p, const RenderSettings& rende
     field = static_cast<std::decay_t<decltype(field)>>(p.integer(key, int64_t(field), lo, hi));
   };
   auto number = [&](const char* key, float& field) { field = float(p.number_in(key, field, 0.0, 1e30)); };
+  s.photons_from_image = s.progressive && !p.has("photons");
+  s.caustic_photons_from_image = s.progressive && !p.has("caustic_photons");
   integer("photons", s.photons, 0, int64_t(1) << 31);
   integer("caustic_photons", s.caustic_photons, 0, int64_t(1) << 31);
   integer("global_k", s.global_k, 1, 10000);
@@ -46,6 +48,11 @@ PhotonSettings PhotonSettings::read(const Params& p, const RenderSettings& rende
   return s;
 }
 
+size_t PhotonSettings::photons_for_image(int width, int height) {
+  const double wanted = kPhotonsPerPixel * double(std::max(width, 1)) * double(std::max(height, 1));
+  return std::clamp(size_t(wanted), kMinProgressivePhotons, kProgressivePhotons);
+}
+
 std::unique_ptr<Integrator> PhotonIntegrator::create(const Params& p, const RenderSettings& render) {
   return std::make_unique<PhotonIntegrator>(PhotonSettings::read(p, render, true), true);
 }
@@ -55,6 +62,9 @@ std::unique_ptr<Integrator> PhotonIntegrator::create_direct(const Params& p, con
 }
 
 void PhotonIntegrator::preprocess(const Scene& scene, const PreprocessContext& context) {
+  const size_t for_image = PhotonSettings::photons_for_image(scene.camera.width(), scene.camera.height());
+  if (settings_.photons_from_image) settings_.photons = for_image;
+  if (settings_.caustic_photons_from_image) settings_.caustic_photons = for_image;
   check_photon_memory(settings_.photons + (final_gather_ ? settings_.caustic_photons : 0));
   global_est_.k = size_t(settings_.global_k);
   caustic_est_.k = size_t(settings_.caustic_k);

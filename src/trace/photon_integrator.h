@@ -11,6 +11,13 @@ struct PhotonSettings : MonteCarloSettings {
   size_t photons = 200000;
   size_t caustic_photons = 200000;
   static constexpr size_t kProgressivePhotons = 100000;
+  // Progressive and not given: per pass kPhotonsPerPixel of the image's pixels, between
+  // kMinProgressivePhotons and kProgressivePhotons, set at preprocess (photons_for_image). The
+  // photon pass then keeps its share of a pass's time at any image size (BENCHMARKS.md).
+  bool photons_from_image = false, caustic_photons_from_image = false;
+  static constexpr double kPhotonsPerPixel = 0.4;
+  static constexpr size_t kMinProgressivePhotons = 10000;
+  static size_t photons_for_image(int width, int height);
   int global_k = 50;
   int caustic_k = 80;
   float global_radius = 0;   // 0: chosen from the scene's area and the photon count

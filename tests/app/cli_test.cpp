@@ -229,7 +229,8 @@ TEST_CASE("cli: under a memory limit, large allocations are refused with what th
   // (The limit named is the tightest: ulimit -v here, unless the machine or its cgroup has less.)
   CHECK(r.err.find("error: a 16384 x 16384 image needs about 19.0 GiB of memory; ") != std::string::npos);
   CHECK(r.err.find(" leaves ") != std::string::npos);
-  r = run_caustica("render scene.json --integrator photon --photons 30000000 -o p.png", dir, test::address_space_limit(2 << 20));
+  r = run_caustica("render scene.json --integrator photon --photons 30000000 --caustic-photons 100000 -o p.png", dir,
+                   test::address_space_limit(2 << 20));
   CHECK(r.exit_code == 1);
   CHECK(r.err.find("error: a photon pass of 30100000 photons needs about ") != std::string::npos);
   CHECK(r.err.find("GiB of memory; ") != std::string::npos);
