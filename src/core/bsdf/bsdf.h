@@ -65,6 +65,10 @@ class Bsdf {
   bool is_specular() const { return (flags() & (kBsdfDiffuse | kBsdfGlossy)) == 0; }
   // A single diffuse reflection lobe: f = albedo / pi everywhere (not so under a normal map).
   virtual bool is_lambertian() const { return flags() == (kBsdfDiffuse | kBsdfReflection); }
+  // Reflects about albedo / pi times the irradiance: exactly when Lambertian; for a diffuse
+  // lobe in a tilted frame (bump and normal maps) the irradiance about the tilted normal, which
+  // a final gather's second bounce may read from the irradiance about the surface's.
+  virtual bool diffuse_in_some_frame() const { return is_lambertian(); }
 };
 
 // The glossy roughness of a BSDF made of two (twosided, blendbsdf): the narrower glossy lobe's.

@@ -17,6 +17,7 @@ class TiltedFrameBsdf : public Bsdf {
   uint32_t flags() const final { return nested_->flags(); }
   // A tilted diffuse lobe is not albedo / pi in the surface's frame.
   bool is_lambertian() const final { return false; }
+  bool diffuse_in_some_frame() const final { return nested_->is_lambertian(); }
   float glossy_roughness() const final { return nested_->glossy_roughness(); }
   Color albedo(const ShadingPoint& sp = {}) const final { return nested_->albedo(sp); }
   bool has_mask() const final { return nested_->has_mask(); }
