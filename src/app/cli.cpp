@@ -144,7 +144,7 @@ const CLI::Validator kIntegratorName(
       const std::string name = item.substr(0, item.find(':'));
       if (name.empty()) return std::string();
       if (find_integrator_plugin(name)) return std::string();
-      return "unknown integrator \"" + name + "\" (known: " + known_integrators() + ")";
+      return unknown_integrator(name);
     },
     "INTEGRATOR");
 

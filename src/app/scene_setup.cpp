@@ -58,7 +58,7 @@ std::unique_ptr<Integrator> integrator_for(const LoadedScene& loaded, const std:
   std::string type = loaded.integrator_type;
   JsonSource settings = loaded.integrator_settings;
   if (!requested.empty() && !find_integrator_plugin(requested)) {
-    throw InputError("unknown integrator \"" + requested + "\" (known: " + known_integrators() + ")");
+    throw InputError(unknown_integrator(requested));
   }
   if (!requested.empty() && requested != type) {
     // The scene's settings were written for another integrator: use the defaults.

@@ -40,8 +40,8 @@ class Emitter {
       // Not at surfaces that scatter nothing (Mitsuba's null): photons pass through them.
       if (m.flags() == 0) continue;
       const bool gather = is_gather_surface(m, s.glossy_threshold);
-      if ((!gather && is_caustic_surface(m, s.caustic_threshold)) || (gather && m.has(kBsdfSpecular)))
-        targets_.push_back({o.centre, o.radius});
+      // A gather surface is a target for its delta lobe (plastic's coat) only.
+      if (gather ? m.has(kBsdfSpecular) : is_caustic_surface(m, s.caustic_threshold)) targets_.push_back({o.centre, o.radius});
     }
   }
   bool has_targets() const { return !targets_.empty(); }

@@ -97,12 +97,16 @@ void report_new_warnings(const std::vector<std::string>& fresh, std::vector<std:
 
 std::string known_integrators() { return plugin_names(integrator_plugins()); }
 
+std::string unknown_integrator(const std::string& name) {
+  return "unknown integrator \"" + name + "\" (known: " + known_integrators() + ")";
+}
+
 std::unique_ptr<Integrator> create_integrator(const std::string& type, const JsonSource& settings,
                                               const RenderSettings& render) {
   const IntegratorPlugin* row = find_integrator_plugin(type);
   const SourceParams params(settings);
   if (!row) {
-    const std::string message = "unknown integrator \"" + type + "\" (known: " + known_integrators() + ")";
+    const std::string message = unknown_integrator(type);
     // A type the scene file names: said with the file and the place.
     if (!settings.file.empty()) params.reader().fail(settings.pointer + "/type", message);
     throw InputError(message);

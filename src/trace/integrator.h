@@ -97,5 +97,7 @@ std::unique_ptr<Integrator> create_integrator(const std::string& type, const Jso
                                               const RenderSettings& render);
 // The integrators by name, comma-separated, for messages and help.
 std::string known_integrators();
+// "unknown integrator \"NAME\" (known: ...)": the one message for a name no row has.
+std::string unknown_integrator(const std::string& name);
 
 }  // namespace caustica
