@@ -16,7 +16,7 @@ Color gather(const PhotonMap& map, const Vec3& p, const Vec3& n_side, const Esti
   for (int l = 0; l < levels; ++l) level_sums[l] = Color(0.0f);
   const size_t found = s.fixed_radius ? map.radius_query(p, s.max_radius, scratch)
                                       : map.knn(p, s.k, s.max_radius, scratch);
-  if (info) *info = EstimateInfo{};
+  if (info) *info = EstimateInfo{0, 0.0f, found};
   if (found == 0) return Color(0.0f);
   // Fewer than k photons within max_radius: the disc is the whole search radius.
   const float r2_disc = s.fixed_radius || found < s.k ? s.max_radius * s.max_radius : scratch.back().dist2;
@@ -45,7 +45,7 @@ Color gather(const PhotonMap& map, const Vec3& p, const Vec3& n_side, const Esti
   }
   float area = kPi * r2;
   if (s.cone_filter) area *= 1.0f - 2.0f / (3.0f * s.cone_k);
-  if (info) *info = EstimateInfo{used, r};
+  if (info) *info = EstimateInfo{used, r, found};
   for (int l = 1; l < levels; ++l) level_sums[l] /= area;
   if (levels > 0) level_sums[0] = sum / area;
   return sum / area;

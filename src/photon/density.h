@@ -36,6 +36,7 @@ inline EstimateSettings with_bounces(EstimateSettings s, int min_bounces, int ma
 struct EstimateInfo {
   size_t photons = 0;  // photons used (after the normal and side tests)
   float radius = 0;    // radius of the estimate's disc
+  size_t found = 0;    // photons the search returned (its cost)
 };
 
 // Reflected radiance towards wo at a surface hit, from the k nearest photons:

@@ -123,13 +123,14 @@ class Emitter {
   std::vector<Aim> targets_;
 };
 
-// Follows one photon; appends what it stores to `out`.
+// Follows one photon; appends what it stores to `out` and counts its rays in `rays`.
 void trace_photon(const Scene& scene, Ray ray, Color flux, bool caustic, const PhotonPassSettings& s, Rng& rng,
-                  std::vector<PendingPhoton>& out) {
+                  std::vector<PendingPhoton>& out, uint64_t& rays) {
   const int max_depth = s.max_depth;
   int specular_bounces = 0;
   for (int depth = 0; depth < max_depth; ++depth) {
     SurfaceHit hit;
+    ++rays;
     if (!scene.intersect(ray, hit)) return;
     const Vec3 wo = -ray.dir;
     const Vec3 wo_l = hit.frame.to_local(wo);
@@ -180,8 +181,10 @@ bool stop_requested(const PhotonPassSettings& s) { return s.cancel && s.cancel->
 
 // Emits photons until `wanted` are stored; returns them normalised by the number emitted.
 // `global_emitted`: the global map's emission this pass, which bounds the caustic map's.
+// `rays_out`: the rays traced, trimmed photons included.
 std::vector<Photon> run_map(const Scene& scene, const PhotonPassSettings& s, bool caustic, uint64_t global_emitted,
-                            uint64_t& emitted_out, float& flux_scale, std::vector<std::string>& warnings) {
+                            uint64_t& emitted_out, uint64_t& rays_out, float& flux_scale,
+                            std::vector<std::string>& warnings) {
   std::vector<Photon> result;
   emitted_out = 0;
   const size_t wanted = caustic ? s.caustic_photons : s.global_photons;
@@ -206,6 +209,7 @@ std::vector<Photon> run_map(const Scene& scene, const PhotonPassSettings& s, boo
     if (stop_requested(s)) break;
     std::vector<std::vector<PendingPhoton>> chunk_out(chunks_in_round);
     std::vector<std::vector<uint32_t>> chunk_counts(chunks_in_round);  // stored per emitted photon
+    std::vector<uint64_t> chunk_rays(chunks_in_round, 0);
     const uint64_t first = emitted;
     tbb::parallel_for(uint64_t(0), chunks_in_round, [&](uint64_t c) {
       if (stop_requested(s)) return;
@@ -217,10 +221,11 @@ std::vector<Photon> run_map(const Scene& scene, const PhotonPassSettings& s, boo
         const size_t before = out.size();
         Ray ray;
         Color flux;
-        if (emitter.emit(rng, ray, flux)) trace_photon(scene, ray, flux, caustic, s, rng, out);
+        if (emitter.emit(rng, ray, flux)) trace_photon(scene, ray, flux, caustic, s, rng, out, chunk_rays[c]);
         counts.push_back(uint32_t(out.size() - before));
       }
     });
+    for (uint64_t r : chunk_rays) rays_out += r;
     // Keep photons in photon-index order up to the one that completes the wanted count (a scan
     // of the counts; the chunks move, nothing is copied).
     for (uint64_t c = 0; c < chunks_in_round && !done; ++c) {
@@ -290,9 +295,9 @@ void check_photon_memory(size_t photons) {
 PhotonPassResult trace_photons(const Scene& scene, const PhotonPassSettings& settings) {
   const auto t0 = std::chrono::steady_clock::now();
   PhotonPassResult r;
-  r.global = run_map(scene, settings, false, 0, r.global_emitted, r.global_scale, r.warnings);
+  r.global = run_map(scene, settings, false, 0, r.global_emitted, r.rays, r.global_scale, r.warnings);
   if (!stop_requested(settings))
-    r.caustic = run_map(scene, settings, true, r.global_emitted, r.caustic_emitted, r.caustic_scale, r.warnings);
+    r.caustic = run_map(scene, settings, true, r.global_emitted, r.caustic_emitted, r.rays, r.caustic_scale, r.warnings);
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return r;
 }

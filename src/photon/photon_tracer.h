@@ -25,6 +25,7 @@ struct PhotonPassResult {
   uint64_t global_emitted = 0, caustic_emitted = 0;
   float global_scale = 1, caustic_scale = 1;  // a photon's flux is record.power() * scale
   double seconds = 0;
+  uint64_t rays = 0;  // rays traced, both maps (kept photons or not): the pass's cost in rays
   std::vector<std::string> warnings;
 };
 

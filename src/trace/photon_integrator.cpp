@@ -6,6 +6,7 @@
 #include <iomanip>
 #include <iostream>
 #include <sstream>
+#include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
 #include "photon/gather.h"
 #include "photon/photon_tracer.h"
@@ -14,6 +15,35 @@
 namespace caustica {
 namespace {
 thread_local std::vector<Neighbour> tls_scratch;
+// Work counted for the pilot (choose_sample_counts) in rays: a photon-map estimate (k nearest
+// photons) and a precomputed-irradiance lookup as so many rays, and a stored photon's share of
+// the kd-tree build and the precomputation. Counted, not timed, so that the pilot chooses the
+// same counts on every run; the weights are measured (BENCHMARKS.md, issue 25).
+struct Work {
+  uint64_t estimates = 0;   // photon-map estimates
+  uint64_t neighbours = 0;  // photons their searches returned (each evaluates the BSDF)
+  uint64_t lookups = 0;     // precomputed-irradiance lookups
+};
+thread_local Work tls_work;
+// (Fitted to the time per camera sample's parts on eleven scenes, with a scale per scene for
+// its ray cost; the photon pass's to its parts' times on the same scenes.)
+constexpr double kEstimateCost = 1.5, kNeighbourCost = 0.35, kLookupCost = 1.0;
+constexpr double kPhotonRayCost = 1.3, kStoredPhotonCost = 1.2;
+double work_done(const Sampler& sampler) {
+  const Work& w = tls_work;
+  return double(sampler.rays) + kEstimateCost * double(w.estimates) + kNeighbourCost * double(w.neighbours) +
+         kLookupCost * double(w.lookups);
+}
+// A photon-map estimate, counted.
+Color counted_estimate(const PhotonMap& map, const SurfaceHit& hit, const Vec3& wo, const EstimateSettings& s,
+                       std::vector<Neighbour>& scratch) {
+  EstimateInfo info;
+  const Color L = radiance_estimate(map, hit, wo, s, scratch, &info);
+  ++tls_work.estimates;
+  tls_work.neighbours += info.found;
+  return L;
+}
+
 double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
@@ -41,6 +71,8 @@ PhotonSettings PhotonSettings::read(const Params& p, const RenderSettings& rende
   number("caustic_radius", s.caustic_radius);
   integer("gather_rays", s.gather_rays, 0, 1 << 16);
   integer("direct_samples", s.direct_samples, 1, 1 << 16);
+  s.gather_rays_given = !final_gather || p.has("gather_rays");
+  s.direct_samples_given = !final_gather || p.has("direct_samples");
   integer("irradiance_stride", s.irradiance_stride, 0, 1 << 20);
   number("glossy_threshold", s.glossy_threshold);
   number("caustic_threshold", s.caustic_threshold);
@@ -77,13 +109,25 @@ void PhotonIntegrator::preprocess(const Scene& scene, const PreprocessContext& c
     return std::sqrt(float(k) * area / (kPi * float(std::max<size_t>(photons, 1))));
   };
   if (settings_.progressive) {
-    global_r1_ = settings_.global_radius > 0 ? settings_.global_radius
-                                             : 3.0f * even_radius(settings_.global_k, settings_.photons);
-    caustic_r1_ = settings_.caustic_radius > 0 ? settings_.caustic_radius
-                                               : even_radius(settings_.caustic_k, settings_.caustic_photons);
+    auto first_radii = [&] {
+      global_r1_ = settings_.global_radius > 0 ? settings_.global_radius
+                                               : 3.0f * even_radius(settings_.global_k, settings_.photons);
+      caustic_r1_ = settings_.caustic_radius > 0 ? settings_.caustic_radius
+                                                 : even_radius(settings_.caustic_k, settings_.caustic_photons);
+    };
+    first_radii();
+    // The pilot runs on passes 0 and 1's maps on every MPI rank, so that all choose alike.
+    built_pass_ = -1;
+    const size_t photons = settings_.photons, caustic_photons = settings_.caustic_photons;
+    if (!choose_sample_counts(scene, context)) return;
+    if (settings_.photons != photons || settings_.caustic_photons != caustic_photons) {
+      first_radii();
+      built_pass_ = -1;  // the pilot's maps had the other counts
+    } else if (built_pass_ == 0 && context.first_pass == 0) {
+      --stats_.pilot_passes, ++stats_.passes;  // its pass 0 is the image's
+    }
     // The first pass's maps now (so that `caustica photons` and the AOVs see maps); the others
     // in begin_pass.
-    built_pass_ = -1;
     begin_pass(scene, context.first_pass, context);
     return;
   }
@@ -93,6 +137,7 @@ void PhotonIntegrator::preprocess(const Scene& scene, const PreprocessContext& c
   caustic_est_.max_radius = settings_.caustic_radius > 0 ? settings_.caustic_radius
                                                          : even_radius(settings_.caustic_k, caustic_.size());
   build_irradiance();
+  choose_sample_counts(scene, context);
 }
 
 bool PhotonIntegrator::begin_pass(const Scene& scene, int pass, const PreprocessContext& context) {
@@ -117,6 +162,8 @@ void PhotonIntegrator::build_irradiance() {
   const auto t0 = std::chrono::steady_clock::now();
   // For the gathers' points at eye vertices 1 .. 8 (gathers from eye vertices 0 .. 7).
   irradiance_.build(global_, size_t(settings_.irradiance_stride), at_depth(global_est_, 1), 8);
+  // Each point's k-NN search, as an estimate's.
+  photon_pass_cost_ += (kEstimateCost + kNeighbourCost * double(global_est_.k)) * double(irradiance_.size());
   stats_.irradiance_seconds += seconds_since(t0);
   stats_.irradiance_bytes = irradiance_.memory_bytes();
 }
@@ -132,6 +179,7 @@ bool PhotonIntegrator::build_maps(const Scene& scene, uint64_t seed, const Prepr
   pass.cancel = context.cancel;
   PhotonPassResult r = trace_photons(scene, pass);
   stats_.photon_seconds += r.seconds;
+  photon_pass_cost_ = kPhotonRayCost * double(r.rays) + kStoredPhotonCost * double(r.global.size() + r.caustic.size());
   stats_.global_emitted += r.global_emitted;
   stats_.caustic_emitted += r.caustic_emitted;
   ++stats_.passes;
@@ -159,30 +207,63 @@ Color PhotonIntegrator::indirect_at(const SurfaceHit& hit, const Vec3& wo, std::
   if (level >= 0 && hit.material->diffuse_in_some_frame()) {
     Color E;
     // A progressive pass also shrinks how far away the precomputed point may lie.
+    ++tls_work.lookups;
     if (irradiance_.lookup(hit.p, n_side, est.max_radius * std::sqrt(est.radius2_scale), level, E, scratch)) return hit.material->albedo(hit.sp) * kInvPi * E;
   }
-  return radiance_estimate(global_, hit, wo, est, scratch);
+  return counted_estimate(global_, hit, wo, est, scratch);
 }
 
+// One camera sample's shadow-ray and gather samples, by index, as they add to the pixel: the
+// i-th samples of all its gather points summed (luminance), and the work they took.
+struct PhotonIntegrator::Probe {
+  static constexpr int kSamples = 4;
+  static_assert(kSamples == std::size(PilotSample{}.direct));
+  Color scale{1.0f};  // the throughput into the trace_eye call recording (glass splits, coats)
+  double direct[kSamples] = {}, gather[kSamples] = {};
+  double direct_work = 0, gather_work = 0;
+  void record_direct(int i, const Color& v, double work) {
+    direct[i] += double(luminance(scale * v));
+    direct_work += work;
+  }
+  void record_gather(int i, const Color& v, double work) {
+    gather[i] += double(luminance(scale * v));
+    gather_work += work;
+  }
+  // While a nested trace_eye runs: its samples count times `factor`.
+  struct Nested {
+    Probe* probe;
+    Color saved;
+    Nested(Probe* p, const Color& factor) : probe(p), saved(p ? p->scale : Color(1.0f)) {
+      if (p) p->scale *= factor;
+    }
+    ~Nested() {
+      if (probe) probe->scale = saved;
+    }
+    Nested(const Nested&) = delete;
+    Nested& operator=(const Nested&) = delete;
+  };
+};
+
 Color PhotonIntegrator::final_gather(const Scene& scene, const SurfaceHit& hit, const Vec3& wo, Sampler& sampler,
-                                     std::vector<Neighbour>& scratch, bool skip_delta, int eye_depth) const {
-  const int n = settings_.gather_rays;
+                                     std::vector<Neighbour>& scratch, bool skip_delta, int eye_depth, int n,
+                                     float ratio, const Color& beta, Probe* probe) const {
   if (n <= 0) return Color(0.0f);
   const Vec3 wo_l = hit.frame.to_local(wo);
-  // Stratified over an sx x sy grid; the remainder unstratified.
+  // Stratified over an sx x sy grid; the remainder unstratified. (Not for the pilot: it takes
+  // the variance of one ray from the spread of independent ones.)
   const int sx = std::max(1, int(std::sqrt(float(n)))), sy = n / sx;
-  Color sum(0.0f);
-  for (int i = 0; i < n; ++i) {
+  // One gather ray's contribution.
+  auto gather_ray = [&](int i) -> Color {
     Vec2 u = sampler.next2d();
-    if (i < sx * sy) u = Vec2((float(i % sx) + u.x) / float(sx), (float(i / sx) + u.y) / float(sy));
+    if (i < sx * sy && !probe) u = Vec2((float(i % sx) + u.x) / float(sx), (float(i / sx) + u.y) / float(sy));
     BsdfSample bs;
-    if (!hit.material->sample(wo_l, u, sampler.next1d(), bs, hit.sp)) continue;
-    if (skip_delta && bs.delta) continue;  // the caller traces the delta lobes
+    if (!hit.material->sample(wo_l, u, sampler.next1d(), bs, hit.sp)) return Color(0.0f);
+    if (skip_delta && bs.delta) return Color(0.0f);  // the caller traces the delta lobes
     const Vec3 wi = hit.frame.to_world(bs.wi);
-    if (hit.leaks(wi)) continue;
-    Color throughput = bs.weight;
+    if (hit.leaks(wi)) return Color(0.0f);
+    Color sum(0.0f), throughput = bs.weight;
     Ray ray = spawn_ray(hit.p, hit.n, wi);
-    BsdfVertex from{bs.delta, gather_ratio() * bs.pdf, hit.p};
+    BsdfVertex from{bs.delta, ratio * bs.pdf, hit.p};
     // The emission a segment reaches is the gather's when the segment starts at the gather
     // point (direct light, shared with the shadow rays by MIS) or when a soft surface lies
     // between; through caustic surfaces alone it is the caustic map's.
@@ -229,8 +310,16 @@ Color PhotonIntegrator::final_gather(const Scene& scene, const SurfaceHit& hit, 
       counts_emission = past_soft;
       ray = spawn_ray(g.p, g.n, gwi);
     }
+    return sum;
+  };
+  Color total(0.0f);
+  for (int i = 0; i < n; ++i) {
+    const double work0 = probe ? work_done(sampler) : 0.0;
+    const Color one = gather_ray(i);
+    total += one;
+    if (probe) probe->record_gather(i, beta * one, work_done(sampler) - work0);
   }
-  return sum / float(n);
+  return total / float(n);
 }
 
 void PhotonIntegrator::record_aov(const SurfaceHit& hit, const Vec3& wo, float* aov,
@@ -249,7 +338,7 @@ Color PhotonIntegrator::Li(const Ray& camera_ray, const Scene& scene, Sampler& s
 }
 
 Color PhotonIntegrator::trace_eye(const Ray& start, const Scene& scene, Sampler& sampler, int depth,
-                                  int splits_left) const {
+                                  int splits_left, Probe* probe) const {
   std::vector<Neighbour>& scratch = tls_scratch;
   // Emission and the environment count in full after the camera and delta bounces; after a
   // near-specular glossy bounce they are weighted against that vertex's shadow ray (MIS).
@@ -268,23 +357,32 @@ Color PhotonIntegrator::trace_eye(const Ray& start, const Scene& scene, Sampler&
       if (!final_gather_) return L + beta * radiance_estimate(global_, hit, wo, at_depth(global_est_, depth), scratch);
       // Direct light: shadow rays, MIS-weighted against the final-gather rays, which are BSDF
       // samples and count the emission their first segment reaches (final_gather).
+      // (The pilot takes Probe::kSamples of each.)
+      const int nd = probe ? Probe::kSamples : settings_.direct_samples;
+      const int ng = probe ? Probe::kSamples : settings_.gather_rays;
+      const float ratio = probe ? 1.0f : gather_ratio();
       Color direct(0.0f);
-      const float ratio = gather_ratio();
-      for (int i = 0; i < settings_.direct_samples; ++i) direct += estimate_direct(scene, hit, wo, sampler, ratio);
-      L += beta * direct / float(settings_.direct_samples);
-      if (!caustic_.empty()) L += beta * radiance_estimate(caustic_, hit, wo, at_depth(caustic_est_, depth), scratch);
+      for (int i = 0; i < nd; ++i) {
+        const double work0 = probe ? work_done(sampler) : 0.0;
+        const Color one = estimate_direct(scene, hit, wo, sampler, ratio);
+        direct += one;
+        if (probe) probe->record_direct(i, beta * one, work_done(sampler) - work0);
+      }
+      L += beta * direct / float(nd);
+      if (!caustic_.empty()) L += beta * counted_estimate(caustic_, hit, wo, at_depth(caustic_est_, depth), scratch);
       // A delta lobe beside the diffuse one (plastic's coat): traced as the eye path goes on,
       // while the final gather covers the other lobes only. Without splits left, the gather's
       // delta samples carry it instead.
       const bool trace_coat = splits_left > 0 && m.has(kBsdfSpecular);
-      L += beta * final_gather(scene, hit, wo, sampler, scratch, trace_coat, depth);
+      L += beta * final_gather(scene, hit, wo, sampler, scratch, trace_coat, depth, ng, ratio, beta, probe);
       if (trace_coat) {
         BsdfSample coat[2];
         const int n = m.specular_lobes(wo_l, coat, hit.sp);
         for (int i = 0; i < n; ++i) {
           const Vec3 wi = hit.frame.to_world(coat[i].wi);
           if (is_black(coat[i].weight) || hit.leaks(wi)) continue;
-          L += beta * coat[i].weight * trace_eye(spawn_ray(hit.p, hit.n, wi), scene, sampler, depth + 1, splits_left - 1);
+          const Probe::Nested nested(probe, beta * coat[i].weight);
+          L += beta * coat[i].weight * trace_eye(spawn_ray(hit.p, hit.n, wi), scene, sampler, depth + 1, splits_left - 1, probe);
         }
       }
       return L;
@@ -298,7 +396,8 @@ Color PhotonIntegrator::trace_eye(const Ray& start, const Scene& scene, Sampler&
       for (const BsdfSample& lobe : lobes) {
         if (is_black(lobe.weight)) continue;
         const Ray next = spawn_ray(hit.p, hit.n, hit.frame.to_world(lobe.wi));
-        split += lobe.weight * trace_eye(next, scene, sampler, depth + 1, splits_left - 1);
+        const Probe::Nested nested(probe, beta * lobe.weight);
+        split += lobe.weight * trace_eye(next, scene, sampler, depth + 1, splits_left - 1, probe);
       }
       return L + beta * split;
     }
@@ -310,6 +409,163 @@ Color PhotonIntegrator::trace_eye(const Ray& start, const Scene& scene, Sampler&
   return L;
 }
 
+std::vector<double> optimal_sample_counts(double v0, double c0, const std::vector<SampleCountPart>& parts) {
+  const size_t n = parts.size();
+  std::vector<double> count(n);
+  for (size_t i = 0; i < n; ++i) count[i] = parts[i].lo;
+  // Coordinate descent: each count in turn is set to its optimum with the others held, the
+  // sqrt rule with the others in the fixed part, clamped. The error is a product of posynomials,
+  // convex in log n, so within the bounds' box this converges to the one optimum.
+  for (int round = 0; round < 200; ++round) {
+    double change = 0;
+    for (size_t i = 0; i < n; ++i) {
+      const SampleCountPart& p = parts[i];
+      if (!(p.v > 0) || !(p.c > 0)) continue;  // stays at lo
+      double v = v0, c = c0;
+      for (size_t j = 0; j < n; ++j)
+        if (j != i) v += parts[j].v / count[j], c += parts[j].c * count[j];
+      const double best = std::clamp(v > 0 ? std::sqrt(p.v * c / (v * p.c)) : p.hi, p.lo, p.hi);
+      change = std::max(change, std::abs(best - count[i]) / count[i]);
+      count[i] = best;
+    }
+    if (change < 1e-9) break;
+  }
+  return count;
+}
+
+std::vector<PhotonIntegrator::PilotSample> PhotonIntegrator::pilot_samples(const Scene& scene, uint64_t seed) const {
+  const int w = scene.camera.width(), h = scene.camera.height();
+  const int gx = std::min(w, kPilotGrid), gy = std::min(h, kPilotGrid);
+  std::vector<PilotSample> out(size_t(gx) * size_t(gy) * kPilotPerPixel);
+  const uint64_t pilot_seed = hash_seed(seed, 0x70696c6f74, 0);  // "pilot"
+  tbb::parallel_for(0, gx * gy, [&](int cell) {
+    // The pixel at the centre of its cell of a gx x gy grid over the image.
+    const int x = ((cell % gx) * w + w / 2) / gx, y = ((cell / gx) * h + h / 2) / gy;
+    for (int j = 0; j < kPilotPerPixel; ++j) {
+      Sampler sampler(hash_seed(uint64_t(cell), uint64_t(j), pilot_seed));
+      const Vec2 jitter = sampler.next2d();
+      const Ray ray = scene.camera.has_lens() ? scene.camera.generate_ray(x, y, jitter, sampler.next2d())
+                                              : scene.camera.generate_ray(x, y, jitter);
+      Probe probe;
+      const double work0 = work_done(sampler);
+      const double v = double(luminance(trace_eye(ray, scene, sampler, 0, kSplitLevels, &probe)));
+      PilotSample& r = out[size_t(cell) * kPilotPerPixel + size_t(j)];
+      r.value = std::isfinite(v) ? v : 0.0;
+      for (int i = 0; i < Probe::kSamples; ++i) {
+        r.direct[i] = std::isfinite(probe.direct[i]) ? probe.direct[i] : 0.0;
+        r.gather[i] = std::isfinite(probe.gather[i]) ? probe.gather[i] : 0.0;
+      }
+      r.work = work_done(sampler) - work0;
+      r.direct_work = probe.direct_work;
+      r.gather_work = probe.gather_work;
+    }
+  });
+  return out;
+}
+
+bool PhotonIntegrator::choose_sample_counts(const Scene& scene, const PreprocessContext& context) {
+  const bool choose_photons = settings_.progressive && (settings_.photons_from_image || settings_.caustic_photons_from_image);
+  if (!final_gather_ || (settings_.gather_rays_given && settings_.direct_samples_given && !choose_photons)) return true;
+  constexpr int P = Probe::kSamples, M = kPilotPerPixel;
+  // Progressive: the same samples on pass 1's maps and then on pass 0's tell the part of the
+  // variance that is the maps' own (a pass's maps are shared by all its pixels' samples, so
+  // the spread of one map's samples misses it).
+  std::vector<PilotSample> other;
+  const int passes = stats_.passes;
+  if (settings_.progressive) {
+    if (!begin_pass(scene, 1, context)) return false;
+    other = pilot_samples(scene, context.seed);
+    if (!begin_pass(scene, 0, context)) return false;
+    // The pilot's photon passes are its own (pass 0's maps serve the render if their counts
+    // stay: preprocess).
+    stats_.pilot_passes = stats_.passes - passes;
+    stats_.passes = passes;
+  }
+  const std::vector<PilotSample> samples = pilot_samples(scene, context.seed);
+  auto sample_variance = [](const double* v, int n) {
+    double mean = 0, ss = 0;
+    for (int i = 0; i < n; ++i) mean += v[i];
+    mean /= n;
+    for (int i = 0; i < n; ++i) ss += (v[i] - mean) * (v[i] - mean);
+    return ss / (n - 1);
+  };
+  // Sums in pixel order: the same for any thread count.
+  SampleCountPilot r;
+  r.ran = true;
+  r.samples = int(samples.size());
+  double work = 0, direct_work = 0, gather_work = 0;
+  const size_t pixels = samples.size() / M;
+  for (size_t px = 0; px < pixels; ++px) {
+    const PilotSample* s = &samples[px * M];
+    double values[M], mean = 0, v_direct = 0, v_gather = 0, v_maps = 0;
+    for (int j = 0; j < M; ++j) {
+      values[j] = s[j].value;
+      mean += s[j].value / M;
+      v_direct += sample_variance(s[j].direct, P) / M;
+      v_gather += sample_variance(s[j].gather, P) / M;
+      work += s[j].work, direct_work += s[j].direct_work, gather_work += s[j].gather_work;
+      if (!other.empty()) {
+        // The two maps' difference: the mean of the gather rays' differences has the per-ray
+        // part of the maps' noise (already in the gather rays' spread) over P; the rest is shared.
+        const PilotSample& o = other[px * M + size_t(j)];
+        double d[P];
+        for (int i = 0; i < P; ++i) d[i] = s[j].gather[i] - o.gather[i];
+        const double e = s[j].value - o.value;
+        v_maps += (0.5 * e * e - 0.5 * sample_variance(d, P) / P) / M;
+      }
+    }
+    const double weight = 1.0 / (mean * mean + 0.01);  // as the relMSE weighs a pixel's error
+    // Between one map's camera samples: V0 + (Vd + Vg) / P.
+    r.v_pixel += weight * (sample_variance(values, M) - (v_direct + v_gather) / P);
+    r.v_direct += weight * v_direct;
+    r.v_gather += weight * v_gather;
+    r.v_maps += weight * v_maps;
+  }
+  r.v_pixel /= double(pixels), r.v_direct /= double(pixels), r.v_gather /= double(pixels), r.v_maps /= double(pixels);
+  r.v_maps = std::max(r.v_maps, 0.0);
+  const double n = double(samples.size());
+  r.c_direct = direct_work / (n * P);
+  r.c_gather = gather_work / (n * P);
+  r.c_pixel = (work - direct_work - gather_work) / n;
+  // The photon pass is traced once per image pass: each pixel's sample carries its share.
+  const int w = scene.camera.width(), h = scene.camera.height();
+  r.c_maps = settings_.progressive ? photon_pass_cost_ / (double(w) * double(h)) : 0.0;
+  pilot_ = r;
+
+  // The counts not given, for the least error at equal time (optimal_sample_counts); those
+  // given (and the photons, when not chosen) join the fixed part.
+  double v0 = r.v_pixel, c0 = r.c_pixel;
+  std::vector<SampleCountPart> parts;
+  int* counts[2] = {&settings_.direct_samples, &settings_.gather_rays};
+  const bool given[2] = {settings_.direct_samples_given, settings_.gather_rays_given};
+  const double v[2] = {r.v_direct, r.v_gather}, c[2] = {r.c_direct, r.c_gather};
+  for (int i = 0; i < 2; ++i) {
+    if (!given[i]) parts.push_back({v[i], c[i], 1.0, double(kMaxSampleCount)});
+    else if (*counts[i] > 0) v0 += v[i] / *counts[i], c0 += c[i] * *counts[i];
+  }
+  // The maps' variance and cost both scale with the photons per pass.
+  if (choose_photons) parts.push_back({r.v_maps, r.c_maps, kMinPhotonScale, kMaxPhotonScale});
+  else v0 += r.v_maps, c0 += r.c_maps;
+  // V0 is never taken as below a hundredth of the rest (noise in the pilot's difference can
+  // make it 0 or negative).
+  v0 = std::max(v0, 0.01 * (r.v_direct + r.v_gather + r.v_maps));
+  const std::vector<double> chosen = optimal_sample_counts(v0, c0, parts);
+  size_t next = 0;
+  for (int i = 0; i < 2; ++i)
+    if (!given[i]) *counts[i] = int(std::lround(chosen[next++]));
+  if (choose_photons) {
+    pilot_.photon_scale = chosen[next];
+    auto scaled = [&](size_t photons) {
+      return std::clamp(size_t(double(photons) * pilot_.photon_scale), PhotonSettings::kMinProgressivePhotons / 4,
+                        PhotonSettings::kMaxProgressivePhotons);
+    };
+    if (settings_.photons_from_image) settings_.photons = scaled(settings_.photons);
+    if (settings_.caustic_photons_from_image) settings_.caustic_photons = scaled(settings_.caustic_photons);
+    check_photon_memory(settings_.photons + settings_.caustic_photons);
+  }
+  return true;
+}
+
 std::string PhotonIntegrator::describe() const {
   std::ostringstream s;
   const size_t ng = global_.size(), nc = caustic_.size();
@@ -318,11 +574,18 @@ std::string PhotonIntegrator::describe() const {
   s << "global map: " << ng << " stored, k " << global_est_.k << ", max radius " << global_est_.max_radius << "\n";
   if (final_gather_) {
     s << "caustic map: " << nc << " stored, k " << caustic_est_.k << ", max radius " << caustic_est_.max_radius << ", cone filter k " << caustic_est_.cone_k << "\n";
-    s << "gather rays: " << settings_.gather_rays << "\ndirect samples: " << settings_.direct_samples << "\n";
+    s << "gather rays: " << settings_.gather_rays << (settings_.gather_rays_given ? "" : " (pilot)")
+      << "\ndirect samples: " << settings_.direct_samples << (settings_.direct_samples_given ? "" : " (pilot)") << "\n";
+    if (pilot_.ran)
+      s << "pilot, per camera sample (" << pilot_.samples << "; relMSE-weighted variance, work in rays): the rest "
+        << pilot_.v_pixel << ", " << pilot_.c_pixel << "; a shadow ray " << pilot_.v_direct << ", " << pilot_.c_direct
+        << "; a gather ray " << pilot_.v_gather << ", " << pilot_.c_gather << "; the photon maps " << pilot_.v_maps
+        << ", " << pilot_.c_maps << " (photons scaled by " << pilot_.photon_scale << ")\n";
     s << "precomputed irradiance: " << (settings_.irradiance_stride > 0 ? "every " + std::to_string(settings_.irradiance_stride) + "th global photon (" + std::to_string(irradiance_.size()) + " points)" : std::string("off")) << "\n";
   }
   if (settings_.progressive) {
-    s << "progressive: " << stats_.passes << " photon passes (maps above: the last), alpha " << settings_.alpha
+    s << "progressive: " << stats_.passes << " photon passes (maps above: the last; and " << stats_.pilot_passes
+      << " for the pilot), alpha " << settings_.alpha
       << ", first radii " << global_r1_ << " (global), " << caustic_r1_ << " (caustic)\n";
     s << "photons emitted, all passes: " << stats_.global_emitted << " (global), " << stats_.caustic_emitted
       << " (caustic)\n";

@@ -11,6 +11,7 @@ struct PhotonSettings : MonteCarloSettings {
   size_t photons = 200000;
   size_t caustic_photons = 200000;
   static constexpr size_t kProgressivePhotons = 100000;
+  static constexpr size_t kMaxProgressivePhotons = 1000000;  // the pilot's choice at most
   // Progressive and not given: per pass kPhotonsPerPixel of the image's pixels, between
   // kMinProgressivePhotons and kProgressivePhotons, set at preprocess (photons_for_image). The
   // photon pass then keeps its share of a pass's time at any image size (BENCHMARKS.md).
@@ -22,8 +23,11 @@ struct PhotonSettings : MonteCarloSettings {
   int caustic_k = 80;
   float global_radius = 0;   // 0: chosen from the scene's area and the photon count
   float caustic_radius = 0;  // 0: likewise
-  int gather_rays = 12;      // final-gather rays per first diffuse hit (tuned at equal time, BENCHMARKS.md)
+  int gather_rays = 12;      // final-gather rays per first diffuse hit
   int direct_samples = 4;    // shadow-ray samples per first diffuse hit
+  // Not given in the scene or on the command line (read() clears them): chosen for the scene
+  // by a pilot before the render (PhotonIntegrator::choose_sample_counts).
+  bool gather_rays_given = true, direct_samples_given = true;
   int irradiance_stride = 4; // precompute irradiance at every n-th global photon; 0: off
   // Photons are stored, and eye paths stop to gather, on a diffuse lobe or a glossy lobe at
   // least this rough (microfacet alpha); smoother glossy surfaces are traced through.
@@ -42,9 +46,36 @@ struct PhotonSettings : MonteCarloSettings {
   static PhotonSettings read(const Params& p, const RenderSettings& render, bool final_gather);
 };
 
+// What the pilot measured (choose_sample_counts), per camera sample: variances weighted as the
+// relMSE weighs them, costs in rays (a photon-map estimate counted as kEstimateCost rays).
+struct SampleCountPilot {
+  bool ran = false;
+  int samples = 0;        // camera samples traced
+  double v_pixel = 0;     // variance left with exact direct light and gathers
+  double v_direct = 0;    // of one shadow-ray sample (summed over a sample's gather points)
+  double v_gather = 0;    // of one gather ray
+  double v_maps = 0;      // the photon maps' (shared by a pass's samples; progressive only)
+  double c_pixel = 0;     // cost of the rest of a sample
+  double c_direct = 0, c_gather = 0;
+  double c_maps = 0;      // a pixel's share of a photon pass
+  double photon_scale = 1;  // the photons per pass scaled by this (when not given)
+};
+
+// Sample counts that minimise the error at equal time, (V0 + sum v_i / n_i)(C0 + sum n_i c_i),
+// for parts of variance v_i and cost c_i per sample beside a fixed part (V0, C0):
+// n_i = sqrt(v_i C0' / (V0' c_i)), with V0' and C0' the fixed part and the parts whose counts
+// sit at a bound (the optimum efficiency-aware splitting builds on; Rath et al. 2022, "EARS",
+// apply it per path vertex). A part of no variance or no cost gets its lower bound.
+struct SampleCountPart {
+  double v = 0, c = 0;     // variance and cost of one sample
+  double lo = 1, hi = 64;  // bounds of the count
+};
+std::vector<double> optimal_sample_counts(double v0, double c0, const std::vector<SampleCountPart>& parts);
+
 struct PhotonStats {
   double photon_seconds = 0, build_seconds = 0, irradiance_seconds = 0;  // summed over passes
-  int passes = 0;  // photon passes traced
+  int passes = 0;  // photon passes traced for the image
+  int pilot_passes = 0;  // and for the pilot (choose_sample_counts)
   uint64_t global_emitted = 0, caustic_emitted = 0;
   size_t global_bytes = 0, caustic_bytes = 0, irradiance_bytes = 0;
 };
@@ -67,6 +98,10 @@ class PhotonIntegrator final : public Integrator {
   const PhotonMap* caustic_map() const override { return &caustic_; }
   const PhotonSettings& settings() const { return settings_; }
   const PhotonStats& stats() const { return stats_; }
+  const SampleCountPilot& pilot() const { return pilot_; }
+  // The pilot's bounds: shadow rays and gather rays per gather point, the photons' scale.
+  static constexpr int kMaxSampleCount = 64;
+  static constexpr double kMinPhotonScale = 0.125, kMaxPhotonScale = 8.0;
   // The estimate settings in use after preprocess (radii resolved).
   const EstimateSettings& global_estimate() const { return global_est_; }
   const EstimateSettings& caustic_estimate() const { return caustic_est_; }
@@ -76,13 +111,33 @@ class PhotonIntegrator final : public Integrator {
   bool build_maps(const Scene& scene, uint64_t seed, const PreprocessContext& context);
   // Precomputes irradiance on the global map with the current radii.
   void build_irradiance();
+  // Records, for the pilot, each shadow-ray and gather sample of a camera sample.
+  struct Probe;
+  // Chooses gather_rays and direct_samples, where not given, for the least relMSE per unit of
+  // work: a pilot of camera samples over the image measures the variance of one shadow ray,
+  // of one gather ray and of the rest of a sample, and what each costs; the optimum of
+  // (V0 + Vd / nd + Vg / ng)(C0 + nd Cd + ng Cg) is nd = sqrt(Vd C0 / (V0 Cd)), likewise ng.
+  // Deterministic: the same counts for any thread count.
+  // Progressive, with the photon counts not given, it also scales the photons per pass: their
+  // maps' variance (measured on two passes' maps) and cost scale with them. False when cancelled.
+  bool choose_sample_counts(const Scene& scene, const PreprocessContext& context);
+  // The pilot: kPilotPerPixel camera samples at each pixel of a grid over the image.
+  static constexpr int kPilotGrid = 64, kPilotPerPixel = 4;
+  struct PilotSample {
+    double value = 0;              // the sample's luminance
+    double direct[4] = {}, gather[4] = {};  // its i-th shadow-ray and gather samples (Probe)
+    double work = 0, direct_work = 0, gather_work = 0;
+  };
+  std::vector<PilotSample> pilot_samples(const Scene& scene, uint64_t seed) const;
   // Final gathering by BSDF samples from eye vertex `depth`; with skip_delta, samples of delta
-  // lobes count 0.
+  // lobes count 0. n rays, MIS against shadow rays taken at `ratio` per gather ray.
   Color final_gather(const Scene& scene, const SurfaceHit& hit, const Vec3& wo, Sampler& sampler,
-                     std::vector<Neighbour>& scratch, bool skip_delta, int depth) const;
+                     std::vector<Neighbour>& scratch, bool skip_delta, int depth, int n, float ratio,
+                     const Color& beta, Probe* probe) const;
   // Camera paths split at the first kSplitLevels glass surfaces into reflection and refraction.
   static constexpr int kSplitLevels = 2;
-  Color trace_eye(const Ray& ray, const Scene& scene, Sampler& sampler, int depth, int splits_left) const;
+  Color trace_eye(const Ray& ray, const Scene& scene, Sampler& sampler, int depth, int splits_left,
+                  Probe* probe = nullptr) const;
   void record_aov(const SurfaceHit& hit, const Vec3& wo, float* aov, std::vector<Neighbour>& scratch) const;
   // The global map's estimate at eye vertex `depth`.
   Color indirect_at(const SurfaceHit& hit, const Vec3& wo, std::vector<Neighbour>& scratch, int depth) const;
@@ -100,6 +155,8 @@ class PhotonIntegrator final : public Integrator {
   bool final_gather_;
   PhotonSettings settings_;
   PhotonStats stats_;
+  SampleCountPilot pilot_;
+  double photon_pass_cost_ = 0;  // the last photon pass's cost in rays (pilot)
   PhotonMap global_, caustic_;
   IrradianceCache irradiance_;
   EstimateSettings global_est_, caustic_est_;

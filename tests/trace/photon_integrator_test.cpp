@@ -174,3 +174,129 @@ TEST_CASE("photon: caustic centre under a glass sphere matches the path tracer w
   // The caustic is much brighter than the floor lit directly would be in the sphere's shadow.
   CHECK(a.x > 1.0);
 }
+
+// ---- The pilot that chooses shadow rays, gather rays and photons per pass (issue 25) ----
+
+TEST_CASE("photon: optimal_sample_counts minimise (V0 + sum v_i / n_i)(C0 + sum n_i c_i), bounds included",
+          "[trace][photon][pilot]") {
+  Rng rng(17);
+  auto draw = [&] { return std::exp(8.0 * double(rng.next_float()) - 4.0); };  // 0.018 .. 55
+  int inside = 0;
+  for (int trial = 0; trial < 100; ++trial) {
+    const double v0 = draw(), c0 = draw();
+    const std::vector<SampleCountPart> parts = {{draw(), draw(), 1, 64}, {draw(), draw(), 0.5, 8}};
+    auto error = [&](double n1, double n2) {
+      return (v0 + parts[0].v / n1 + parts[1].v / n2) * (c0 + n1 * parts[0].c + n2 * parts[1].c);
+    };
+    // Brute force over a grid of both counts within their bounds.
+    double bn1 = 1, bn2 = 0.5, be = 1e300;
+    for (double n1 = 1; n1 <= 64; n1 += 0.05)
+      for (double n2 = 0.5; n2 <= 8; n2 += 0.01) {
+        const double e = error(n1, n2);
+        if (e < be) be = e, bn1 = n1, bn2 = n2;
+      }
+    const std::vector<double> n = optimal_sample_counts(v0, c0, parts);
+    INFO("V0 " << v0 << " C0 " << c0 << " parts " << parts[0].v << " " << parts[0].c << ", " << parts[1].v << " "
+               << parts[1].c << ": chosen " << n[0] << " " << n[1] << ", brute force " << bn1 << " " << bn2);
+    REQUIRE(n.size() == 2);
+    CHECK(n[0] >= 1);
+    CHECK(n[0] <= 64);
+    CHECK(n[1] >= 0.5);
+    CHECK(n[1] <= 8);
+    // Never worse than the grid's best (it may be a little better: the grid is coarse).
+    CHECK(error(n[0], n[1]) <= be * (1 + 1e-9));
+    if (n[0] > 1.1 && n[0] < 63 && n[1] > 0.6 && n[1] < 7.9) {
+      ++inside;
+      // (The optimum is flat: the grid's point may sit a grid step or two away.)
+      CHECK(n[0] == Approx(bn1).epsilon(0.03).margin(0.1));
+      CHECK(n[1] == Approx(bn2).epsilon(0.03).margin(0.02));
+    }
+  }
+  CHECK(inside > 10);  // the interior optimum was tested, not only the bounds
+  // No variance to gain, or no other variance to pay for.
+  CHECK(optimal_sample_counts(1, 1, {{0, 1, 1, 64}})[0] == 1);
+  CHECK(optimal_sample_counts(0, 1, {{1, 1, 1, 64}})[0] == 64);
+}
+
+namespace {
+// The photon integrator after preprocess (the pilot has run), with its scene.
+struct Prepared {
+  LoadedScene loaded;
+  std::unique_ptr<Integrator> integrator;
+  const PhotonIntegrator& photon() const { return dynamic_cast<const PhotonIntegrator&>(*integrator); }
+};
+Prepared prepare_photon(const std::string& scene_text, const std::string& settings_json, int size, int threads) {
+  Prepared p{parse_scene(scene_text, "test.json", "."), nullptr};
+  Scene& scene = *p.loaded.scene;
+  scene.render.width = scene.render.height = size;
+  scene.camera.set_resolution(size, size);
+  JsonSource settings;
+  settings.file = "test.json";
+  settings.pointer = "/integrator";
+  settings.value = nlohmann::json::parse(settings_json);
+  tbb::global_control control(tbb::global_control::max_allowed_parallelism, size_t(threads));
+  p.integrator = create_integrator("photon", settings, scene.render);
+  p.integrator->preprocess(scene, {3, true});
+  return p;
+}
+}  // namespace
+
+TEST_CASE("photon: the pilot measures no shadow-ray, gather or map variance under a point light over a bare floor, "
+          "and chooses the fewest",
+          "[trace][photon][pilot]") {
+  // A point light's shadow ray is exact; gather rays from the floor escape; no photon reaches
+  // an estimate that a camera sample reads.
+  const Prepared p = prepare_photon(test::floor_scene(R"({"type": "point", "position": [0, 2, 0], "intensity": [5, 5, 5]})"),
+                                    "{}", 16, 2);
+  const SampleCountPilot& pilot = p.photon().pilot();
+  REQUIRE(pilot.ran);
+  CHECK(pilot.v_direct == 0);
+  CHECK(pilot.v_gather == 0);
+  CHECK(pilot.v_maps == 0);
+  CHECK(pilot.c_direct > 0);
+  CHECK(p.photon().settings().direct_samples == 1);
+  CHECK(p.photon().settings().gather_rays == 1);
+  CHECK(pilot.photon_scale == PhotonIntegrator::kMinPhotonScale);
+}
+
+TEST_CASE("photon: the pilot gives a floor under a wide area light more shadow rays, and keeps counts that are given",
+          "[trace][photon][pilot]") {
+  // A 4 x 4 emitter 1 unit above the floor, facing it: one shadow sample's irradiance varies
+  // with where it lands on the emitter (cos^2 / d^2), while the pixel's own variance is tiny
+  // (a narrow camera).
+  const std::string scene = R"({
+    "camera": {"position": [0, 0.9, 0], "look_at": [0, 0, 0], "up": [0, 0, 1], "fov": 2},
+    "materials": {"floor": {"type": "diffuse", "reflectance": 0.5},
+                  "light": {"type": "diffuse", "reflectance": 0, "emission": [1, 1, 1]}},
+    "objects": [{"type": "quad", "origin": [-50, 0, -50], "edge1": [0, 0, 100], "edge2": [100, 0, 0], "material": "floor"},
+                {"type": "quad", "origin": [-2, 1, -2], "edge1": [4, 0, 0], "edge2": [0, 0, 4], "material": "light"}]})";
+  const Prepared p = prepare_photon(scene, "{}", 16, 2);
+  const SampleCountPilot& pilot = p.photon().pilot();
+  CHECK(pilot.v_direct > 0);
+  CHECK(p.photon().settings().direct_samples > 1);
+  // Given counts stay as given.
+  const Prepared q = prepare_photon(scene, R"({"direct_samples": 3, "gather_rays": 5})", 16, 2);
+  CHECK(q.photon().settings().direct_samples == 3);
+  CHECK(q.photon().settings().gather_rays == 5);
+}
+
+TEST_CASE("photon: the pilot chooses the same counts, and the image is the same, for 1 and 2 threads",
+          "[trace][photon][pilot][determinism]") {
+  const std::string scene = test::read_scene_file("tests/data/tiny.json");
+  const Prepared one = prepare_photon(scene, "{}", 16, 1), two = prepare_photon(scene, "{}", 16, 2);
+  const PhotonSettings& a = one.photon().settings();
+  const PhotonSettings& b = two.photon().settings();
+  CHECK(a.direct_samples == b.direct_samples);
+  CHECK(a.gather_rays == b.gather_rays);
+  CHECK(a.photons == b.photons);
+  CHECK(a.caustic_photons == b.caustic_photons);
+  CHECK(one.photon().pilot().v_pixel == two.photon().pilot().v_pixel);
+  // The box's indirect light and its small light's penumbrae: both variances are there.
+  CHECK(one.photon().pilot().v_direct > 0);
+  CHECK(one.photon().pilot().v_gather > 0);
+  CHECK(one.photon().pilot().v_maps > 0);
+  const auto r1 = render_text(scene, "photon", "{}", 2, 16, 16, 3, 1);
+  const auto r2 = render_text(scene, "photon", "{}", 2, 16, 16, 3, 2);
+  CHECK(r1.image.mean().x > 0.01f);
+  CHECK(r1.image.pixels == r2.image.pixels);
+}
