@@ -1,12 +1,43 @@
 // Next-event estimation shared by the whitted, path and photon integrators.
 #include "trace/direct.h"
+#include <algorithm>
+#include <cmath>
 
 namespace caustica {
 
 Color estimate_direct(const Scene& scene, const SurfaceHit& hit, const Vec3& wo, Sampler& sampler, float mis_ratio) {
-  float pmf = 0.0f;
-  const Light* light = scene.sample_light(sampler.next1d(), pmf);
+  const float u_light = sampler.next1d();
   const Vec2 u = sampler.next2d();
+  return estimate_direct(scene, hit, wo, u_light, u, sampler, mis_ratio);
+}
+
+StratifiedDirect::StratifiedDirect(Sampler& sampler, int n) {
+  if (n <= 1) return;
+  n = count_ = std::min(n, kMax);
+  const int sx = std::max(1, int(std::sqrt(float(n)))), sy = n / sx;
+  int order[kMax];
+  for (int i = 0; i < n; ++i) order[i] = i;
+  for (int i = n - 1; i > 0; --i) std::swap(order[i], order[std::min(i, int(sampler.next1d() * float(i + 1)))]);
+  for (int i = 0; i < n; ++i) {
+    u_light_[i] = std::min((float(i) + sampler.next1d()) / float(n), 0x1.fffffep-1f);
+    const int k = order[i];
+    const Vec2 r = sampler.next2d();
+    u_[i] = k < sx * sy ? Vec2(std::min((float(k % sx) + r.x) / float(sx), 0x1.fffffep-1f),
+                              std::min((float(k / sx) + r.y) / float(sy), 0x1.fffffep-1f))
+                       : r;
+  }
+}
+
+Color StratifiedDirect::estimate(const Scene& scene, const SurfaceHit& hit, const Vec3& wo, Sampler& sampler, int i,
+                                 float mis_ratio) const {
+  if (i >= count_) return estimate_direct(scene, hit, wo, sampler, mis_ratio);
+  return estimate_direct(scene, hit, wo, u_light_[i], u_[i], sampler, mis_ratio);
+}
+
+Color estimate_direct(const Scene& scene, const SurfaceHit& hit, const Vec3& wo, float u_light, const Vec2& u,
+                      Sampler& sampler, float mis_ratio) {
+  float pmf = 0.0f;
+  const Light* light = scene.sample_light(u_light, pmf);
   if (!light || pmf <= 0.0f) return Color(0.0f);
   LightSample ls;
   if (!light->sample_li(hit.p, u, ls)) return Color(0.0f);

@@ -12,6 +12,28 @@ namespace caustica {
 // density scaled by the same ratio); 0 means no MIS.
 Color estimate_direct(const Scene& scene, const SurfaceHit& hit, const Vec3& wo, Sampler& sampler,
                       float mis_ratio = 0.0f);
+// The same with the light chosen by u_light and its point by u.
+Color estimate_direct(const Scene& scene, const SurfaceHit& hit, const Vec3& wo, float u_light, const Vec2& u,
+                      Sampler& sampler, float mis_ratio);
+
+// n light samples at one point, stratified: the light's choice over n strata of [0, 1), the
+// point on it over an sx x sy grid of [0, 1)^2 (the remainder unstratified), the two paired at
+// random. With several samples at a point, the share that lands on a small bright light or a
+// sun is then nearly fixed instead of binomial. One sample (or past kMax) draws as
+// estimate_direct does.
+class StratifiedDirect {
+ public:
+  static constexpr int kMax = 64;
+  StratifiedDirect(Sampler& sampler, int n);
+  // Sample i (0 .. n - 1) of estimate_direct.
+  Color estimate(const Scene& scene, const SurfaceHit& hit, const Vec3& wo, Sampler& sampler, int i,
+                 float mis_ratio) const;
+
+ private:
+  int count_ = 0;  // samples with stored numbers
+  float u_light_[kMax];
+  Vec2 u_[kMax];
+};
 
 // The power heuristic (Veach 1997, beta = 2) for a sample of density pa against density pb.
 inline float mis_weight(float pa, float pb) {

@@ -29,10 +29,17 @@ thread_local Work tls_work;
 // its ray cost; the photon pass's to its parts' times on the same scenes.)
 constexpr double kEstimateCost = 1.5, kNeighbourCost = 0.35, kLookupCost = 1.0;
 constexpr double kPhotonRayCost = 1.3, kStoredPhotonCost = 1.2;
-double work_done(const Sampler& sampler) {
+// The counts so far on this thread; work_since(sampler, w) is the work done since snapshot w,
+// from the counts' integer differences (the same whatever the thread did before).
+struct WorkSnapshot {
+  uint64_t rays;
+  Work work;
+};
+WorkSnapshot work_snapshot(const Sampler& sampler) { return {sampler.rays, tls_work}; }
+double work_since(const Sampler& sampler, const WorkSnapshot& w0) {
   const Work& w = tls_work;
-  return double(sampler.rays) + kEstimateCost * double(w.estimates) + kNeighbourCost * double(w.neighbours) +
-         kLookupCost * double(w.lookups);
+  return double(sampler.rays - w0.rays) + kEstimateCost * double(w.estimates - w0.work.estimates) +
+         kNeighbourCost * double(w.neighbours - w0.work.neighbours) + kLookupCost * double(w.lookups - w0.work.lookups);
 }
 // A photon-map estimate, counted.
 Color counted_estimate(const PhotonMap& map, const SurfaceHit& hit, const Vec3& wo, const EstimateSettings& s,
@@ -71,8 +78,11 @@ PhotonSettings PhotonSettings::read(const Params& p, const RenderSettings& rende
   number("caustic_radius", s.caustic_radius);
   integer("gather_rays", s.gather_rays, 0, 1 << 16);
   integer("direct_samples", s.direct_samples, 1, 1 << 16);
+  integer("glossy_direct_samples", s.glossy_direct_samples, 1, 1 << 16);
   s.gather_rays_given = !final_gather || p.has("gather_rays");
   s.direct_samples_given = !final_gather || p.has("direct_samples");
+  s.glossy_direct_samples_given = !final_gather || p.has("glossy_direct_samples");
+  s.caustic_threshold_given = !final_gather || p.has("caustic_threshold");
   integer("irradiance_stride", s.irradiance_stride, 0, 1 << 20);
   number("glossy_threshold", s.glossy_threshold);
   number("caustic_threshold", s.caustic_threshold);
@@ -219,8 +229,8 @@ struct PhotonIntegrator::Probe {
   static constexpr int kSamples = 4;
   static_assert(kSamples == std::size(PilotSample{}.direct));
   Color scale{1.0f};  // the throughput into the trace_eye call recording (glass splits, coats)
-  double direct[kSamples] = {}, gather[kSamples] = {};
-  double direct_work = 0, gather_work = 0;
+  double direct[kSamples] = {}, gather[kSamples] = {}, glossy[kSamples] = {};
+  double direct_work = 0, gather_work = 0, glossy_work = 0;
   void record_direct(int i, const Color& v, double work) {
     direct[i] += double(luminance(scale * v));
     direct_work += work;
@@ -228,6 +238,10 @@ struct PhotonIntegrator::Probe {
   void record_gather(int i, const Color& v, double work) {
     gather[i] += double(luminance(scale * v));
     gather_work += work;
+  }
+  void record_glossy(int i, const Color& v, double work) {
+    glossy[i] += double(luminance(scale * v));
+    glossy_work += work;
   }
   // While a nested trace_eye runs: its samples count times `factor`.
   struct Nested {
@@ -314,10 +328,10 @@ Color PhotonIntegrator::final_gather(const Scene& scene, const SurfaceHit& hit, 
   };
   Color total(0.0f);
   for (int i = 0; i < n; ++i) {
-    const double work0 = probe ? work_done(sampler) : 0.0;
+    const WorkSnapshot work0 = probe ? work_snapshot(sampler) : WorkSnapshot{};
     const Color one = gather_ray(i);
     total += one;
-    if (probe) probe->record_gather(i, beta * one, work_done(sampler) - work0);
+    if (probe) probe->record_gather(i, beta * one, work_since(sampler, work0));
   }
   return total / float(n);
 }
@@ -361,12 +375,14 @@ Color PhotonIntegrator::trace_eye(const Ray& start, const Scene& scene, Sampler&
       const int nd = probe ? Probe::kSamples : settings_.direct_samples;
       const int ng = probe ? Probe::kSamples : settings_.gather_rays;
       const float ratio = probe ? 1.0f : gather_ratio();
+      // Stratified, except for the pilot (it takes one sample's variance from their spread).
+      const StratifiedDirect lights(sampler, probe ? 1 : nd);
       Color direct(0.0f);
       for (int i = 0; i < nd; ++i) {
-        const double work0 = probe ? work_done(sampler) : 0.0;
-        const Color one = estimate_direct(scene, hit, wo, sampler, ratio);
+        const WorkSnapshot work0 = probe ? work_snapshot(sampler) : WorkSnapshot{};
+        const Color one = lights.estimate(scene, hit, wo, sampler, i, ratio);
         direct += one;
-        if (probe) probe->record_direct(i, beta * one, work_done(sampler) - work0);
+        if (probe) probe->record_direct(i, beta * one, work_since(sampler, work0));
       }
       L += beta * direct / float(nd);
       if (!caustic_.empty()) L += beta * counted_estimate(caustic_, hit, wo, at_depth(caustic_est_, depth), scratch);
@@ -401,10 +417,18 @@ Color PhotonIntegrator::trace_eye(const Ray& start, const Scene& scene, Sampler&
       }
       return L + beta * split;
     }
-    // A glossy lobe below the gather threshold: direct light by a shadow ray, MIS-weighted
+    // A glossy lobe below the gather threshold: direct light by shadow rays, MIS-weighted
     // against the BSDF sample that continues the path.
-    if (!m.is_specular()) L += beta * estimate_direct(scene, hit, wo, sampler, 1.0f);
+    const int n = m.is_specular() ? 0 : probe ? Probe::kSamples : settings_.glossy_direct_samples;
+    const StratifiedDirect lights(sampler, probe ? 1 : n);
+    for (int i = 0; i < n; ++i) {
+      const WorkSnapshot work0 = probe ? work_snapshot(sampler) : WorkSnapshot{};
+      const Color one = lights.estimate(scene, hit, wo, sampler, i, 1.0f / float(n));
+      L += beta * one / float(n);
+      if (probe) probe->record_glossy(i, beta * one, work_since(sampler, work0));
+    }
     if (!path.scatter(hit, wo, sampler, ray)) break;
+    if (n > 1) path.from.pdf /= float(n);  // one BSDF sample against n light samples
   }
   return L;
 }
@@ -447,17 +471,19 @@ std::vector<PhotonIntegrator::PilotSample> PhotonIntegrator::pilot_samples(const
       const Ray ray = scene.camera.has_lens() ? scene.camera.generate_ray(x, y, jitter, sampler.next2d())
                                               : scene.camera.generate_ray(x, y, jitter);
       Probe probe;
-      const double work0 = work_done(sampler);
+      const WorkSnapshot work0 = work_snapshot(sampler);
       const double v = double(luminance(trace_eye(ray, scene, sampler, 0, kSplitLevels, &probe)));
       PilotSample& r = out[size_t(cell) * kPilotPerPixel + size_t(j)];
       r.value = std::isfinite(v) ? v : 0.0;
       for (int i = 0; i < Probe::kSamples; ++i) {
         r.direct[i] = std::isfinite(probe.direct[i]) ? probe.direct[i] : 0.0;
         r.gather[i] = std::isfinite(probe.gather[i]) ? probe.gather[i] : 0.0;
+        r.glossy[i] = std::isfinite(probe.glossy[i]) ? probe.glossy[i] : 0.0;
       }
-      r.work = work_done(sampler) - work0;
+      r.work = work_since(sampler, work0);
       r.direct_work = probe.direct_work;
       r.gather_work = probe.gather_work;
+      r.glossy_work = probe.glossy_work;
     }
   });
   return out;
@@ -465,7 +491,43 @@ std::vector<PhotonIntegrator::PilotSample> PhotonIntegrator::pilot_samples(const
 
 bool PhotonIntegrator::choose_sample_counts(const Scene& scene, const PreprocessContext& context) {
   const bool choose_photons = settings_.progressive && (settings_.photons_from_image || settings_.caustic_photons_from_image);
-  if (!final_gather_ || (settings_.gather_rays_given && settings_.direct_samples_given && !choose_photons)) return true;
+  if (!final_gather_ || (settings_.gather_rays_given && settings_.direct_samples_given &&
+                         settings_.glossy_direct_samples_given && !choose_photons))
+    return true;
+  const PhotonSettings asked = settings_;
+  double error = 0;
+  if (!pilot_and_choose(scene, context, choose_photons, error)) return false;
+  // Caustics through near-specular glossy surfaces: the caustic map's estimate at every gather
+  // point can cost more than it saves (a k-NN search where few caustic photons lie). The
+  // other way, caustic_threshold 0, leaves them to the final gather (shadow rays at the glossy
+  // vertex); the pilot measures both and keeps the one of less error at equal time.
+  // (Only where some surface is such: with none, the two are the same.)
+  auto near_specular = [&](const std::unique_ptr<Bsdf>& m) {
+    return !is_gather_surface(*m, settings_.glossy_threshold) && !m->has(kBsdfSpecular) &&
+           is_caustic_surface(*m, settings_.caustic_threshold);
+  };
+  if (settings_.progressive && !settings_.caustic_threshold_given && settings_.caustic_threshold > 0 &&
+      !caustic_.empty() && std::any_of(scene.materials.begin(), scene.materials.end(), near_specular)) {
+    const PhotonSettings with = settings_;
+    const SampleCountPilot with_pilot = pilot_;
+    settings_ = asked;
+    settings_.caustic_threshold = 0;
+    built_pass_ = -1;
+    double error_without = 0;
+    if (!pilot_and_choose(scene, context, choose_photons, error_without)) return false;
+    pilot_.compared_caustic_threshold = true;
+    if (!(error_without < error)) {
+      settings_ = with;
+      pilot_ = with_pilot;
+      pilot_.compared_caustic_threshold = true;
+      built_pass_ = -1;  // the maps are the other threshold's
+    }
+  }
+  return true;
+}
+
+bool PhotonIntegrator::pilot_and_choose(const Scene& scene, const PreprocessContext& context, bool choose_photons,
+                                        double& error) {
   constexpr int P = Probe::kSamples, M = kPilotPerPixel;
   // Progressive: the same samples on pass 1's maps and then on pass 0's tell the part of the
   // variance that is the maps' own (a pass's maps are shared by all its pixels' samples, so
@@ -478,7 +540,7 @@ bool PhotonIntegrator::choose_sample_counts(const Scene& scene, const Preprocess
     if (!begin_pass(scene, 0, context)) return false;
     // The pilot's photon passes are its own (pass 0's maps serve the render if their counts
     // stay: preprocess).
-    stats_.pilot_passes = stats_.passes - passes;
+    stats_.pilot_passes += stats_.passes - passes;
     stats_.passes = passes;
   }
   const std::vector<PilotSample> samples = pilot_samples(scene, context.seed);
@@ -493,17 +555,33 @@ bool PhotonIntegrator::choose_sample_counts(const Scene& scene, const Preprocess
   SampleCountPilot r;
   r.ran = true;
   r.samples = int(samples.size());
-  double work = 0, direct_work = 0, gather_work = 0;
+  double work = 0, direct_work = 0, gather_work = 0, glossy_work = 0;
   const size_t pixels = samples.size() / M;
+  const int gx = std::min(scene.camera.width(), kPilotGrid), gy = int(pixels) / gx;
+  std::vector<double> neighbours_mean(pixels, 0.0);
+  for (int y = 0; y < gy; ++y)
+    for (int x = 0; x < gx; ++x) {
+      double sum = 0;
+      int count = 0;
+      for (int ny = std::max(0, y - 1); ny <= std::min(gy - 1, y + 1); ++ny)
+        for (int nx = std::max(0, x - 1); nx <= std::min(gx - 1, x + 1); ++nx) {
+          if (nx == x && ny == y) continue;
+          for (int j = 0; j < M; ++j) sum += samples[(size_t(ny) * size_t(gx) + size_t(nx)) * M + size_t(j)].value;
+          count += M;
+        }
+      neighbours_mean[size_t(y) * size_t(gx) + size_t(x)] = count > 0 ? sum / count : 0.0;
+    }
   for (size_t px = 0; px < pixels; ++px) {
     const PilotSample* s = &samples[px * M];
-    double values[M], mean = 0, v_direct = 0, v_gather = 0, v_maps = 0;
+    double values[M], mean = 0, v_direct = 0, v_gather = 0, v_glossy = 0, v_maps = 0;
     for (int j = 0; j < M; ++j) {
       values[j] = s[j].value;
       mean += s[j].value / M;
       v_direct += sample_variance(s[j].direct, P) / M;
       v_gather += sample_variance(s[j].gather, P) / M;
+      v_glossy += sample_variance(s[j].glossy, P) / M;
       work += s[j].work, direct_work += s[j].direct_work, gather_work += s[j].gather_work;
+      glossy_work += s[j].glossy_work;
       if (!other.empty()) {
         // The two maps' difference: the mean of the gather rays' differences has the per-ray
         // part of the maps' noise (already in the gather rays' spread) over P; the rest is shared.
@@ -514,19 +592,24 @@ bool PhotonIntegrator::choose_sample_counts(const Scene& scene, const Preprocess
         v_maps += (0.5 * e * e - 0.5 * sample_variance(d, P) / P) / M;
       }
     }
-    const double weight = 1.0 / (mean * mean + 0.01);  // as the relMSE weighs a pixel's error
-    // Between one map's camera samples: V0 + (Vd + Vg) / P.
-    r.v_pixel += weight * (sample_variance(values, M) - (v_direct + v_gather) / P);
+    // As the relMSE weighs a pixel's error, 1 / (reference^2 + 0.01), with the mean of the
+    // neighbouring pilot pixels' samples for the reference: the pixel's own would let its
+    // outliers shrink its weight, and their variance with it.
+    const double weight = 1.0 / (neighbours_mean[px] * neighbours_mean[px] + 0.01);
+    // Between one map's camera samples: V0 + (Vd + Vg + Vs) / P.
+    r.v_pixel += weight * (sample_variance(values, M) - (v_direct + v_gather + v_glossy) / P);
     r.v_direct += weight * v_direct;
     r.v_gather += weight * v_gather;
+    r.v_glossy += weight * v_glossy;
     r.v_maps += weight * v_maps;
   }
-  r.v_pixel /= double(pixels), r.v_direct /= double(pixels), r.v_gather /= double(pixels), r.v_maps /= double(pixels);
+  for (double* v : {&r.v_pixel, &r.v_direct, &r.v_gather, &r.v_glossy, &r.v_maps}) *v /= double(pixels);
   r.v_maps = std::max(r.v_maps, 0.0);
   const double n = double(samples.size());
   r.c_direct = direct_work / (n * P);
   r.c_gather = gather_work / (n * P);
-  r.c_pixel = (work - direct_work - gather_work) / n;
+  r.c_glossy = glossy_work / (n * P);
+  r.c_pixel = (work - direct_work - gather_work - glossy_work) / n;
   // The photon pass is traced once per image pass: each pixel's sample carries its share.
   const int w = scene.camera.width(), h = scene.camera.height();
   r.c_maps = settings_.progressive ? photon_pass_cost_ / (double(w) * double(h)) : 0.0;
@@ -536,10 +619,11 @@ bool PhotonIntegrator::choose_sample_counts(const Scene& scene, const Preprocess
   // given (and the photons, when not chosen) join the fixed part.
   double v0 = r.v_pixel, c0 = r.c_pixel;
   std::vector<SampleCountPart> parts;
-  int* counts[2] = {&settings_.direct_samples, &settings_.gather_rays};
-  const bool given[2] = {settings_.direct_samples_given, settings_.gather_rays_given};
-  const double v[2] = {r.v_direct, r.v_gather}, c[2] = {r.c_direct, r.c_gather};
-  for (int i = 0; i < 2; ++i) {
+  int* counts[3] = {&settings_.direct_samples, &settings_.gather_rays, &settings_.glossy_direct_samples};
+  const bool given[3] = {settings_.direct_samples_given, settings_.gather_rays_given,
+                         settings_.glossy_direct_samples_given};
+  const double v[3] = {r.v_direct, r.v_gather, r.v_glossy}, c[3] = {r.c_direct, r.c_gather, r.c_glossy};
+  for (int i = 0; i < 3; ++i) {
     if (!given[i]) parts.push_back({v[i], c[i], 1.0, double(kMaxSampleCount)});
     else if (*counts[i] > 0) v0 += v[i] / *counts[i], c0 += c[i] * *counts[i];
   }
@@ -548,11 +632,21 @@ bool PhotonIntegrator::choose_sample_counts(const Scene& scene, const Preprocess
   else v0 += r.v_maps, c0 += r.c_maps;
   // V0 is never taken as below a hundredth of the rest (noise in the pilot's difference can
   // make it 0 or negative).
-  v0 = std::max(v0, 0.01 * (r.v_direct + r.v_gather + r.v_maps));
+  v0 = std::max(v0, 0.01 * (r.v_direct + r.v_gather + r.v_glossy + r.v_maps));
   const std::vector<double> chosen = optimal_sample_counts(v0, c0, parts);
   size_t next = 0;
-  for (int i = 0; i < 2; ++i)
+  for (int i = 0; i < 3; ++i)
     if (!given[i]) *counts[i] = int(std::lround(chosen[next++]));
+  // The error at equal time the counts give (relMSE-weighted variance times work per sample).
+  {
+    double ve = v0, ce = c0;
+    size_t k = 0;
+    for (int i = 0; i < 3; ++i)
+      if (!given[i]) ve += v[i] / *counts[i], ce += c[i] * *counts[i], ++k;
+    if (choose_photons) ve += r.v_maps / chosen[k], ce += r.c_maps * chosen[k];
+    error = ve * ce;
+    pilot_.error = error;
+  }
   if (choose_photons) {
     pilot_.photon_scale = chosen[next];
     auto scaled = [&](size_t photons) {
@@ -575,12 +669,18 @@ std::string PhotonIntegrator::describe() const {
   if (final_gather_) {
     s << "caustic map: " << nc << " stored, k " << caustic_est_.k << ", max radius " << caustic_est_.max_radius << ", cone filter k " << caustic_est_.cone_k << "\n";
     s << "gather rays: " << settings_.gather_rays << (settings_.gather_rays_given ? "" : " (pilot)")
-      << "\ndirect samples: " << settings_.direct_samples << (settings_.direct_samples_given ? "" : " (pilot)") << "\n";
+      << "\ndirect samples: " << settings_.direct_samples << (settings_.direct_samples_given ? "" : " (pilot)")
+      << "\nglossy direct samples: " << settings_.glossy_direct_samples
+      << (settings_.glossy_direct_samples_given ? "" : " (pilot)") << "\n";
     if (pilot_.ran)
       s << "pilot, per camera sample (" << pilot_.samples << "; relMSE-weighted variance, work in rays): the rest "
         << pilot_.v_pixel << ", " << pilot_.c_pixel << "; a shadow ray " << pilot_.v_direct << ", " << pilot_.c_direct
-        << "; a gather ray " << pilot_.v_gather << ", " << pilot_.c_gather << "; the photon maps " << pilot_.v_maps
-        << ", " << pilot_.c_maps << " (photons scaled by " << pilot_.photon_scale << ")\n";
+        << "; a gather ray " << pilot_.v_gather << ", " << pilot_.c_gather << "; a glossy vertex's shadow ray "
+        << pilot_.v_glossy << ", " << pilot_.c_glossy << "; the photon maps " << pilot_.v_maps
+        << ", " << pilot_.c_maps << " (photons scaled by " << pilot_.photon_scale << "); error at equal time "
+        << pilot_.error << "\n";
+    if (pilot_.compared_caustic_threshold)
+      s << "caustic threshold: " << settings_.caustic_threshold << " (the pilot's choice of it and 0)\n";
     s << "precomputed irradiance: " << (settings_.irradiance_stride > 0 ? "every " + std::to_string(settings_.irradiance_stride) + "th global photon (" + std::to_string(irradiance_.size()) + " points)" : std::string("off")) << "\n";
   }
   if (settings_.progressive) {

@@ -25,9 +25,13 @@ struct PhotonSettings : MonteCarloSettings {
   float caustic_radius = 0;  // 0: likewise
   int gather_rays = 12;      // final-gather rays per first diffuse hit
   int direct_samples = 4;    // shadow-ray samples per first diffuse hit
+  // Shadow-ray samples at each glossy vertex of a camera path before its gather point (MIS
+  // against the one BSDF sample that continues it).
+  int glossy_direct_samples = 1;
   // Not given in the scene or on the command line (read() clears them): chosen for the scene
   // by a pilot before the render (PhotonIntegrator::choose_sample_counts).
-  bool gather_rays_given = true, direct_samples_given = true;
+  bool gather_rays_given = true, direct_samples_given = true, glossy_direct_samples_given = true;
+  bool caustic_threshold_given = true;  // the pilot may choose 0 when not given
   int irradiance_stride = 4; // precompute irradiance at every n-th global photon; 0: off
   // Photons are stored, and eye paths stop to gather, on a diffuse lobe or a glossy lobe at
   // least this rough (microfacet alpha); smoother glossy surfaces are traced through.
@@ -54,11 +58,15 @@ struct SampleCountPilot {
   double v_pixel = 0;     // variance left with exact direct light and gathers
   double v_direct = 0;    // of one shadow-ray sample (summed over a sample's gather points)
   double v_gather = 0;    // of one gather ray
+  double v_glossy = 0;    // of one shadow ray at a glossy vertex (summed over a sample's)
   double v_maps = 0;      // the photon maps' (shared by a pass's samples; progressive only)
   double c_pixel = 0;     // cost of the rest of a sample
-  double c_direct = 0, c_gather = 0;
+  double c_direct = 0, c_gather = 0, c_glossy = 0;
   double c_maps = 0;      // a pixel's share of a photon pass
   double photon_scale = 1;  // the photons per pass scaled by this (when not given)
+  double error = 0;         // the variance times the work per sample the choice promises
+  // Whether caustic_threshold 0 was measured too (choose_sample_counts).
+  bool compared_caustic_threshold = false;
 };
 
 // Sample counts that minimise the error at equal time, (V0 + sum v_i / n_i)(C0 + sum n_i c_i),
@@ -121,12 +129,16 @@ class PhotonIntegrator final : public Integrator {
   // Progressive, with the photon counts not given, it also scales the photons per pass: their
   // maps' variance (measured on two passes' maps) and cost scale with them. False when cancelled.
   bool choose_sample_counts(const Scene& scene, const PreprocessContext& context);
+  // One pilot with the settings as they are: measures, sets the counts (and the photons when
+  // choose_photons), and gives the error at equal time they promise. False when cancelled.
+  bool pilot_and_choose(const Scene& scene, const PreprocessContext& context, bool choose_photons, double& error);
   // The pilot: kPilotPerPixel camera samples at each pixel of a grid over the image.
   static constexpr int kPilotGrid = 64, kPilotPerPixel = 4;
   struct PilotSample {
     double value = 0;              // the sample's luminance
-    double direct[4] = {}, gather[4] = {};  // its i-th shadow-ray and gather samples (Probe)
-    double work = 0, direct_work = 0, gather_work = 0;
+    // its i-th shadow-ray, gather and glossy-vertex shadow-ray samples (Probe)
+    double direct[4] = {}, gather[4] = {}, glossy[4] = {};
+    double work = 0, direct_work = 0, gather_work = 0, glossy_work = 0;
   };
   std::vector<PilotSample> pilot_samples(const Scene& scene, uint64_t seed) const;
   // Final gathering by BSDF samples from eye vertex `depth`; with skip_delta, samples of delta

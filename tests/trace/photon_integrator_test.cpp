@@ -300,3 +300,53 @@ TEST_CASE("photon: the pilot chooses the same counts, and the image is the same,
   CHECK(r1.image.mean().x > 0.01f);
   CHECK(r1.image.pixels == r2.image.pixels);
 }
+
+namespace {
+// A floor, a near-specular metal sphere (alpha 0.02) and an area light: the sphere is traced
+// through with shadow rays at it, and makes a caustic on the floor.
+std::string near_specular_scene() {
+  return R"({
+    "camera": {"position": [0, 2, -5], "look_at": [0, 0.6, 0], "up": [0, 1, 0], "fov": 40},
+    "render": {"max_depth": 6},
+    "materials": {"floor": {"type": "diffuse", "reflectance": 0.6},
+                  "metal": {"type": "roughconductor", "material": "Cu", "alpha": 0.02},
+                  "light": {"type": "diffuse", "reflectance": 0, "emission": [10, 10, 10]}},
+    "objects": [{"type": "quad", "origin": [-5, 0, -5], "edge1": [0, 0, 10], "edge2": [10, 0, 0], "material": "floor"},
+                {"type": "sphere", "center": [0, 0.6, 0], "radius": 0.6, "material": "metal"},
+                {"type": "quad", "origin": [-0.5, 3, -0.5], "edge1": [1, 0, 0], "edge2": [0, 0, 1], "material": "light"}]})";
+}
+}  // namespace
+
+TEST_CASE("photon: the pilot weighs caustic_threshold 0 against the default only where near-specular glossy "
+          "surfaces are, and keeps a given one",
+          "[trace][photon][pilot]") {
+  const std::string glossy = near_specular_scene();
+  const Prepared p = prepare_photon(glossy, "{}", 24, 2);
+  CHECK(p.photon().pilot().compared_caustic_threshold);
+  const float t = p.photon().settings().caustic_threshold;
+  CHECK((t == 0.0f || t == PhotonSettings{}.caustic_threshold));
+  const Prepared given = prepare_photon(glossy, R"({"caustic_threshold": 0.05})", 24, 2);
+  CHECK_FALSE(given.photon().pilot().compared_caustic_threshold);
+  CHECK(given.photon().settings().caustic_threshold == 0.05f);
+  // The Cornell box has diffuse surfaces only: nothing to weigh.
+  const Prepared box = prepare_photon(test::read_scene_file("tests/data/tiny.json"), "{}", 16, 2);
+  CHECK_FALSE(box.photon().pilot().compared_caustic_threshold);
+}
+
+TEST_CASE("photon: with 1 or 8 glossy_direct_samples and either caustic threshold, a near-specular metal "
+          "and its caustic render as path does",
+          "[trace][photon][pilot]") {
+  const std::string scene = near_specular_scene();
+  const char* settings[] = {R"({"glossy_direct_samples": 1, "caustic_threshold": 0})",
+                            R"({"glossy_direct_samples": 8, "caustic_threshold": 0})",
+                            R"({"glossy_direct_samples": 8, "caustic_threshold": 0.05})"};
+  glm::dvec3 means[3];
+  for (int i = 0; i < 3; ++i) means[i] = region_mean(render_text(scene, "photon", settings[i], 64, 32, 32).image, 0, 0, 32, 32);
+  const auto path = render_text(scene, "path", "{}", 4096, 32, 32);
+  const glm::dvec3 ref = region_mean(path.image, 0, 0, 32, 32);
+  for (int i = 0; i < 3; ++i) {
+    INFO(settings[i] << ": " << means[i].x << " " << means[i].y << " " << means[i].z << "; path " << ref.x << " "
+                     << ref.y << " " << ref.z);
+    for (int c = 0; c < 3; ++c) CHECK(means[i][c] == Approx(ref[c]).epsilon(0.03));
+  }
+}
