@@ -78,6 +78,9 @@ struct SceneFlags {
     cmd->add_option("--max-depth", o.max_depth, "Maximum path length")->check(CLI::Range(0, 1024));
     cmd->add_option("--accel", o.accel, "Ray casting: embree (the default where built) or bvh (our own)")
         ->check(CLI::IsMember({"bvh", "embree"}));
+    cmd->add_option("--light-sampler", o.light_sampler,
+                    "How shadow rays choose a light: tree (by importance at the point, the default) or power")
+        ->check(CLI::IsMember({"tree", "power"}));
     cmd->add_flag("-q,--quiet", o.quiet, "No progress bar and no statistics");
     // The integrators' settings, from their registry: each flag says which integrators read it.
     const std::vector<IntegratorSetting>& settings = integrator_settings();

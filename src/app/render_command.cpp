@@ -122,6 +122,7 @@ int run_render(const RenderArgs& args) {
       << " spheres, " << scene.lights.size() << " lights)\n";
     s << "ray casting: " << scene.accel().name() << " (" << std::setprecision(1)
       << double(scene.accel().memory_bytes()) / (1 << 20) << " MiB)\n" << std::setprecision(3);
+    if (scene.lights.size() > 1) s << "light sampler: " << light_sampler_name(rs.light_sampler) << "\n";
     s << "integrator: " << integrator->name() << "\n" << integrator->describe();
     if (cluster.distributed()) s << "(the integrator's figures above are rank 0's own; those below are all ranks')\n";
     s << "image: " << output << " (" << rs.width << "x" << rs.height << ")\n";

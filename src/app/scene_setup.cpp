@@ -25,6 +25,13 @@ LoadedScene load_scene_with(const SceneOptions& options) {
     }
     overrides.accel = kind;
   }
+  if (!options.light_sampler.empty()) {
+    LightSamplerKind kind;
+    if (!parse_light_sampler(options.light_sampler, kind)) {
+      throw InputError("--light-sampler " + options.light_sampler + ": expected tree or power");
+    }
+    overrides.light_sampler = kind;
+  }
   LoadedScene loaded = load_scene(options.scene, options.mitsuba, overrides);
   for (const std::string& w : loaded.warnings) std::cerr << "warning: " << w << "\n";
   return loaded;
@@ -152,7 +159,7 @@ void check_ranks_agree(const SceneOptions& options, const std::string& command_s
   put("seed", options.seed);
   for (const auto& [key, value] : options.integrator_overrides) s << key << "=" << value.dump() << "\n";
   for (const auto& [name, value] : options.mitsuba.xml.defines) s << "-D" << name << "=" << value << "\n";
-  s << options.mitsuba.ignore_unsupported << options.accel << "\n" << command_settings;
+  s << options.mitsuba.ignore_unsupported << options.accel << options.light_sampler << "\n" << command_settings;
   if (!cluster.same_everywhere(std::hash<std::string>{}(s.str()))) {
     throw InputError("the ranks were started with different scene files or settings: every rank must render the "
                      "same image (same scene file, options, integrator, --spp, --seed, --time)");

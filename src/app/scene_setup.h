@@ -21,6 +21,7 @@ struct SceneOptions {
   bool quiet = false;
   MitsubaOptions mitsuba;  // -D and --ignore-unsupported
   std::string accel;       // --accel bvh|embree (empty: the scene's)
+  std::string light_sampler;  // --light-sampler tree|power (empty: the scene's)
 };
 
 // Loads the scene (warnings to stderr) and applies the command line's render settings.

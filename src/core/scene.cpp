@@ -19,9 +19,7 @@ void Scene::build(std::vector<Primitive> prims) {
     lights[i]->set_scene_sphere(centre, radius);
     if (!lights[i]->is_delta()) environment_.push_back(i);
   }
-  std::vector<float> powers;
-  for (const auto& light : lights) powers.push_back(average(light->power()) * light->sampling_weight());
-  light_distribution_ = Distribution1D(powers.data(), powers.size());
+  light_sampler_ = LightSampler(lights, render.light_sampler);
 }
 
 void Scene::set_accel(AccelKind kind) {
@@ -139,9 +137,9 @@ float Scene::surface_area() const {
   return a;
 }
 
-const Light* Scene::sample_light(float u, float& pmf) const {
+const Light* Scene::sample_photon_light(float u, float& pmf) const {
   if (lights.empty()) return nullptr;
-  return lights[light_distribution_.sample(u, &pmf)].get();
+  return lights[light_sampler_.sample_by_power(u, pmf)].get();
 }
 
 }  // namespace caustica

@@ -5,6 +5,7 @@
 #include <vector>
 #include "core/bvh.h"
 #include "core/camera.h"
+#include "core/light_sampler.h"
 #include "core/lights/light.h"
 #include "core/pixel_filter.h"
 #include "core/bsdf/bsdf.h"
@@ -19,6 +20,7 @@ struct RenderSettings {
   uint64_t seed = 0;
   int max_depth = 16;
   AccelKind accel = default_accel();  // the ray-casting backend
+  LightSamplerKind light_sampler = LightSamplerKind::Tree;  // how shadow rays choose a light
   PixelFilter filter;                 // the pixel reconstruction filter (box by default)
 };
 
@@ -59,17 +61,26 @@ class Scene {
   std::vector<std::unique_ptr<Light>> lights;
   std::vector<ObjectInfo> objects;
 
-  // Builds the ray-casting structure (render.accel) over the primitives and the light-selection
-  // distribution (by power).
+  // Builds the ray-casting structure (render.accel) over the primitives and the light sampler
+  // (render.light_sampler).
   void build(std::vector<Primitive> prims);
   // Casts rays through another backend from now on (the same primitives).
   void set_accel(AccelKind kind);
   bool intersect(const Ray& ray, SurfaceHit& hit) const;
   // Shadow rays: any hit before ray.tmax, masked surfaces passed as intersect() passes them.
   bool occluded(const Ray& ray) const;
-  // Chooses a light in proportion to its power.
-  const Light* sample_light(float u, float& pmf) const;
-  float light_pmf(size_t i) const { return light_distribution_.pmf(i); }
+  // Chooses a light for a shadow ray from p (shading normal n), by render.light_sampler;
+  // null where none can reach p.
+  const Light* sample_light(const Vec3& p, const Vec3& n, float u, float& pmf) const {
+    const int i = light_sampler_.sample(p, n, u, pmf);
+    return i >= 0 ? lights[size_t(i)].get() : nullptr;
+  }
+  // The probability that sample_light at (p, n) chooses light i.
+  float light_pmf(const Vec3& p, const Vec3& n, size_t i) const { return light_sampler_.pmf(p, n, i); }
+  // Chooses a light to emit a photon, in proportion to its power (times its sampling weight).
+  const Light* sample_photon_light(float u, float& pmf) const;
+  float photon_light_pmf(size_t i) const { return light_sampler_.pmf_by_power(i); }
+  const LightSampler& light_sampler() const { return light_sampler_; }
   // Radiance that the surface at `hit` emits towards local direction wo (its area light's, front
   // side only).
   Color emitted(const SurfaceHit& hit, const Vec3& wo_local) const {
@@ -91,7 +102,7 @@ class Scene {
 
  private:
   std::unique_ptr<Accelerator> accel_ = std::make_unique<Bvh>();
-  Distribution1D light_distribution_;
+  LightSampler light_sampler_;
   std::vector<size_t> environment_;  // indices of lights that escaped rays see
   bool has_masks_ = false;           // some material is not fully opaque everywhere
   bool intersect_opaque(const Ray& ray, SurfaceHit& hit) const;

@@ -1,11 +1,11 @@
-// The render block (size, samples, seed, depth, crop, backend, filter), the command line's
+// The render block (size, samples, seed, depth, crop, backend, filter, light sampler), the command line's
 // overrides over it, and the camera.
 #include "io/loader.h"
 
 namespace caustica::scene_loading {
 
 void Loader::read_render(const json& j, const std::string& p) {
-  r.check_object(j, p, {"width", "height", "spp", "seed", "max_depth", "crop", "accel", "filter"});
+  r.check_object(j, p, {"width", "height", "spp", "seed", "max_depth", "crop", "accel", "filter", "light_sampler"});
   RenderSettings& rs = scene().render;
   if (j.contains("width")) rs.width = int(r.integer(j["width"], child(p, "width"), 1, 16384));
   if (j.contains("height")) rs.height = int(r.integer(j["height"], child(p, "height"), 1, 16384));
@@ -20,6 +20,12 @@ void Loader::read_render(const json& j, const std::string& p) {
     bool fell_back = false;
     rs.accel = choose_accel(kind, &fell_back);
     if (fell_back) r.warn(child(p, "accel"), "this build has no Embree: our BVH casts the rays", out.warnings);
+  }
+  if (j.contains("light_sampler")) {
+    const std::string name = r.string(j["light_sampler"], child(p, "light_sampler"));
+    if (!parse_light_sampler(name, rs.light_sampler)) {
+      r.fail(child(p, "light_sampler"), "unknown light_sampler \"" + name + "\" (known: tree, power)");
+    }
   }
   if (j.contains("crop")) {
     const json& c = j["crop"];
@@ -43,6 +49,7 @@ void Loader::apply_overrides() {
   if (overrides.seed) rs.seed = *overrides.seed;
   if (overrides.max_depth) rs.max_depth = *overrides.max_depth;
   if (overrides.accel) rs.accel = choose_accel(overrides.accel);
+  if (overrides.light_sampler) rs.light_sampler = *overrides.light_sampler;
 }
 
 void Loader::read_filter(const json& j, const std::string& p) {

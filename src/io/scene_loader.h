@@ -16,6 +16,7 @@ struct RenderOverrides {
   std::optional<int> width, height, spp, max_depth;
   std::optional<uint64_t> seed;
   std::optional<AccelKind> accel;  // checked by the command line (Embree must be available)
+  std::optional<LightSamplerKind> light_sampler;
 };
 
 struct LoadedScene {

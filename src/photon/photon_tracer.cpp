@@ -49,7 +49,7 @@ class Emitter {
   // Returns false when the sampled photon carries no flux.
   bool emit(Rng& rng, Ray& ray, Color& flux) const {
     float pmf;
-    const Light* light = scene_.sample_light(rng.next_float(), pmf);
+    const Light* light = scene_.sample_photon_light(rng.next_float(), pmf);
     if (!light || pmf <= 0) return false;
     const Vec2 u_pos(rng.next_float(), rng.next_float());
     const Vec2 u_dir(rng.next_float(), rng.next_float());

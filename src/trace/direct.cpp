@@ -37,7 +37,7 @@ Color StratifiedDirect::estimate(const Scene& scene, const SurfaceHit& hit, cons
 Color estimate_direct(const Scene& scene, const SurfaceHit& hit, const Vec3& wo, float u_light, const Vec2& u,
                       Sampler& sampler, float mis_ratio) {
   float pmf = 0.0f;
-  const Light* light = scene.sample_light(u_light, pmf);
+  const Light* light = scene.sample_light(hit.p, hit.frame.n, u_light, pmf);
   if (!light || pmf <= 0.0f) return Color(0.0f);
   LightSample ls;
   if (!light->sample_li(hit.p, u, ls)) return Color(0.0f);
@@ -55,7 +55,7 @@ Color estimate_direct(const Scene& scene, const SurfaceHit& hit, const Vec3& wo,
 Color emission_mis(const Scene& scene, const SurfaceHit& hit, const Color& Le, const BsdfVertex& from) {
   if (is_black(Le) || from.specular || hit.light < 0) return Le;
   const size_t i = size_t(hit.light);
-  const float light_pdf = scene.light_pmf(i) * scene.lights[i]->pdf_li(from.p, hit.p, hit.n);
+  const float light_pdf = scene.light_pmf(from.p, from.n, i) * scene.lights[i]->pdf_li(from.p, hit.p, hit.n);
   return Le * mis_weight(from.pdf, light_pdf);
 }
 
@@ -65,7 +65,7 @@ Color escaped_mis(const Scene& scene, const Vec3& dir, const BsdfVertex& from) {
   Color L(0.0f);
   for (size_t i : scene.environment()) {
     const Color Le = scene.lights[i]->escaped(dir);
-    L += from.specular ? Le : Le * mis_weight(from.pdf, scene.light_pmf(i) * scene.lights[i]->pdf_escaped(dir));
+    L += from.specular ? Le : Le * mis_weight(from.pdf, scene.light_pmf(from.p, from.n, i) * scene.lights[i]->pdf_escaped(dir));
   }
   return L;
 }

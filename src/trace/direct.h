@@ -6,7 +6,7 @@
 namespace caustica {
 
 // Reflected direct radiance towards wo (world) at a hit with non-delta lobes, from one light
-// chosen by power and one point on it: f * Le * G * V / (p_light * pdf). With mis_ratio > 0,
+// chosen by the scene's light sampler and one point on it: f * Le * G * V / (p_light * pdf). With mis_ratio > 0,
 // weighted by the power heuristic against BSDF sampling that takes mis_ratio samples per
 // light sample (and must count the emission it hits with emission_mis / escaped_mis, its
 // density scaled by the same ratio); 0 means no MIS.
@@ -47,6 +47,7 @@ struct BsdfVertex {
   bool specular = true;  // a delta bounce (or the camera): emission counts in full
   float pdf = 0.0f;      // solid-angle density of the BSDF sample, times its MIS sample ratio
   Vec3 p{0.0f};          // where it was taken
+  Vec3 n{0.0f};          // the shading normal there (the light sampler's choice depends on both)
 };
 
 // Emission Le of a surface hit reached from `from`, weighted against next-event estimation.

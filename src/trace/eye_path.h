@@ -36,7 +36,7 @@ struct EyePath {
     const Vec3 wi = hit.frame.to_world(bs.wi);
     if (hit.leaks(wi)) return false;
     beta *= bs.weight;
-    from = BsdfVertex{bs.delta, bs.pdf, hit.p};
+    from = BsdfVertex{bs.delta, bs.pdf, hit.p, hit.frame.n};
     ray = spawn_ray(hit.p, hit.n, wi);
     return true;
   }

@@ -227,21 +227,13 @@ Color PhotonIntegrator::indirect_at(const SurfaceHit& hit, const Vec3& wo, std::
 // i-th samples of all its gather points summed (luminance), and the work they took.
 struct PhotonIntegrator::Probe {
   static constexpr int kSamples = 4;
-  static_assert(kSamples == std::size(PilotSample{}.direct));
+  static_assert(kSamples == std::size(PilotSample{}.part[0]));
   Color scale{1.0f};  // the throughput into the trace_eye call recording (glass splits, coats)
-  double direct[kSamples] = {}, gather[kSamples] = {}, glossy[kSamples] = {};
-  double direct_work = 0, gather_work = 0, glossy_work = 0;
-  void record_direct(int i, const Color& v, double work) {
-    direct[i] += double(luminance(scale * v));
-    direct_work += work;
-  }
-  void record_gather(int i, const Color& v, double work) {
-    gather[i] += double(luminance(scale * v));
-    gather_work += work;
-  }
-  void record_glossy(int i, const Color& v, double work) {
-    glossy[i] += double(luminance(scale * v));
-    glossy_work += work;
+  double sum[kPilotParts][kSamples] = {};
+  double work[kPilotParts] = {};
+  void record(PilotPart part, int i, const Color& v, double w) {
+    sum[part][i] += double(luminance(scale * v));
+    work[part] += w;
   }
   // While a nested trace_eye runs: its samples count times `factor`.
   struct Nested {
@@ -277,7 +269,7 @@ Color PhotonIntegrator::final_gather(const Scene& scene, const SurfaceHit& hit, 
     if (hit.leaks(wi)) return Color(0.0f);
     Color sum(0.0f), throughput = bs.weight;
     Ray ray = spawn_ray(hit.p, hit.n, wi);
-    BsdfVertex from{bs.delta, ratio * bs.pdf, hit.p};
+    BsdfVertex from{bs.delta, ratio * bs.pdf, hit.p, hit.frame.n};
     // The emission a segment reaches is the gather's when the segment starts at the gather
     // point (direct light, shared with the shadow rays by MIS) or when a soft surface lies
     // between; through caustic surfaces alone it is the caustic map's.
@@ -320,7 +312,7 @@ Color PhotonIntegrator::final_gather(const Scene& scene, const SurfaceHit& hit, 
       const Vec3 gwi = g.frame.to_world(ss.wi);
       if (g.leaks(gwi)) break;
       throughput *= ss.weight;
-      from = BsdfVertex{ss.delta, ss.pdf, g.p};
+      from = BsdfVertex{ss.delta, ss.pdf, g.p, g.frame.n};
       counts_emission = past_soft;
       ray = spawn_ray(g.p, g.n, gwi);
     }
@@ -331,7 +323,7 @@ Color PhotonIntegrator::final_gather(const Scene& scene, const SurfaceHit& hit, 
     const WorkSnapshot work0 = probe ? work_snapshot(sampler) : WorkSnapshot{};
     const Color one = gather_ray(i);
     total += one;
-    if (probe) probe->record_gather(i, beta * one, work_since(sampler, work0));
+    if (probe) probe->record(kPilotGather, i, beta * one, work_since(sampler, work0));
   }
   return total / float(n);
 }
@@ -382,7 +374,7 @@ Color PhotonIntegrator::trace_eye(const Ray& start, const Scene& scene, Sampler&
         const WorkSnapshot work0 = probe ? work_snapshot(sampler) : WorkSnapshot{};
         const Color one = lights.estimate(scene, hit, wo, sampler, i, ratio);
         direct += one;
-        if (probe) probe->record_direct(i, beta * one, work_since(sampler, work0));
+        if (probe) probe->record(kPilotDirect, i, beta * one, work_since(sampler, work0));
       }
       L += beta * direct / float(nd);
       if (!caustic_.empty()) L += beta * counted_estimate(caustic_, hit, wo, at_depth(caustic_est_, depth), scratch);
@@ -425,7 +417,7 @@ Color PhotonIntegrator::trace_eye(const Ray& start, const Scene& scene, Sampler&
       const WorkSnapshot work0 = probe ? work_snapshot(sampler) : WorkSnapshot{};
       const Color one = lights.estimate(scene, hit, wo, sampler, i, 1.0f / float(n));
       L += beta * one / float(n);
-      if (probe) probe->record_glossy(i, beta * one, work_since(sampler, work0));
+      if (probe) probe->record(kPilotGlossy, i, beta * one, work_since(sampler, work0));
     }
     if (!path.scatter(hit, wo, sampler, ray)) break;
     if (n > 1) path.from.pdf /= float(n);  // one BSDF sample against n light samples
@@ -475,15 +467,11 @@ std::vector<PhotonIntegrator::PilotSample> PhotonIntegrator::pilot_samples(const
       const double v = double(luminance(trace_eye(ray, scene, sampler, 0, kSplitLevels, &probe)));
       PilotSample& r = out[size_t(cell) * kPilotPerPixel + size_t(j)];
       r.value = std::isfinite(v) ? v : 0.0;
-      for (int i = 0; i < Probe::kSamples; ++i) {
-        r.direct[i] = std::isfinite(probe.direct[i]) ? probe.direct[i] : 0.0;
-        r.gather[i] = std::isfinite(probe.gather[i]) ? probe.gather[i] : 0.0;
-        r.glossy[i] = std::isfinite(probe.glossy[i]) ? probe.glossy[i] : 0.0;
+      for (int k = 0; k < kPilotParts; ++k) {
+        for (int i = 0; i < Probe::kSamples; ++i) r.part[k][i] = std::isfinite(probe.sum[k][i]) ? probe.sum[k][i] : 0.0;
+        r.part_work[k] = probe.work[k];
       }
       r.work = work_since(sampler, work0);
-      r.direct_work = probe.direct_work;
-      r.gather_work = probe.gather_work;
-      r.glossy_work = probe.glossy_work;
     }
   });
   return out;
@@ -555,7 +543,7 @@ bool PhotonIntegrator::pilot_and_choose(const Scene& scene, const PreprocessCont
   SampleCountPilot r;
   r.ran = true;
   r.samples = int(samples.size());
-  double work = 0, direct_work = 0, gather_work = 0, glossy_work = 0;
+  double work = 0, part_work[kPilotParts] = {};
   const size_t pixels = samples.size() / M;
   const int gx = std::min(scene.camera.width(), kPilotGrid), gy = int(pixels) / gx;
   std::vector<double> neighbours_mean(pixels, 0.0);
@@ -573,21 +561,21 @@ bool PhotonIntegrator::pilot_and_choose(const Scene& scene, const PreprocessCont
     }
   for (size_t px = 0; px < pixels; ++px) {
     const PilotSample* s = &samples[px * M];
-    double values[M], mean = 0, v_direct = 0, v_gather = 0, v_glossy = 0, v_maps = 0;
+    double values[M], mean = 0, v_part[kPilotParts] = {}, v_maps = 0;
     for (int j = 0; j < M; ++j) {
       values[j] = s[j].value;
       mean += s[j].value / M;
-      v_direct += sample_variance(s[j].direct, P) / M;
-      v_gather += sample_variance(s[j].gather, P) / M;
-      v_glossy += sample_variance(s[j].glossy, P) / M;
-      work += s[j].work, direct_work += s[j].direct_work, gather_work += s[j].gather_work;
-      glossy_work += s[j].glossy_work;
+      work += s[j].work;
+      for (int k = 0; k < kPilotParts; ++k) {
+        v_part[k] += sample_variance(s[j].part[k], P) / M;
+        part_work[k] += s[j].part_work[k];
+      }
       if (!other.empty()) {
         // The two maps' difference: the mean of the gather rays' differences has the per-ray
         // part of the maps' noise (already in the gather rays' spread) over P; the rest is shared.
         const PilotSample& o = other[px * M + size_t(j)];
         double d[P];
-        for (int i = 0; i < P; ++i) d[i] = s[j].gather[i] - o.gather[i];
+        for (int i = 0; i < P; ++i) d[i] = s[j].part[kPilotGather][i] - o.part[kPilotGather][i];
         const double e = s[j].value - o.value;
         v_maps += (0.5 * e * e - 0.5 * sample_variance(d, P) / P) / M;
       }
@@ -597,19 +585,19 @@ bool PhotonIntegrator::pilot_and_choose(const Scene& scene, const PreprocessCont
     // outliers shrink its weight, and their variance with it.
     const double weight = 1.0 / (neighbours_mean[px] * neighbours_mean[px] + 0.01);
     // Between one map's camera samples: V0 + (Vd + Vg + Vs) / P.
-    r.v_pixel += weight * (sample_variance(values, M) - (v_direct + v_gather + v_glossy) / P);
-    r.v_direct += weight * v_direct;
-    r.v_gather += weight * v_gather;
-    r.v_glossy += weight * v_glossy;
+    r.v_pixel += weight * (sample_variance(values, M) - (v_part[kPilotDirect] + v_part[kPilotGather] + v_part[kPilotGlossy]) / P);
+    r.v_direct += weight * v_part[kPilotDirect];
+    r.v_gather += weight * v_part[kPilotGather];
+    r.v_glossy += weight * v_part[kPilotGlossy];
     r.v_maps += weight * v_maps;
   }
   for (double* v : {&r.v_pixel, &r.v_direct, &r.v_gather, &r.v_glossy, &r.v_maps}) *v /= double(pixels);
   r.v_maps = std::max(r.v_maps, 0.0);
   const double n = double(samples.size());
-  r.c_direct = direct_work / (n * P);
-  r.c_gather = gather_work / (n * P);
-  r.c_glossy = glossy_work / (n * P);
-  r.c_pixel = (work - direct_work - gather_work - glossy_work) / n;
+  r.c_direct = part_work[kPilotDirect] / (n * P);
+  r.c_gather = part_work[kPilotGather] / (n * P);
+  r.c_glossy = part_work[kPilotGlossy] / (n * P);
+  r.c_pixel = (work - part_work[kPilotDirect] - part_work[kPilotGather] - part_work[kPilotGlossy]) / n;
   // The photon pass is traced once per image pass: each pixel's sample carries its share.
   const int w = scene.camera.width(), h = scene.camera.height();
   r.c_maps = settings_.progressive ? photon_pass_cost_ / (double(w) * double(h)) : 0.0;

@@ -134,11 +134,14 @@ class PhotonIntegrator final : public Integrator {
   bool pilot_and_choose(const Scene& scene, const PreprocessContext& context, bool choose_photons, double& error);
   // The pilot: kPilotPerPixel camera samples at each pixel of a grid over the image.
   static constexpr int kPilotGrid = 64, kPilotPerPixel = 4;
+  // The parts of a camera sample whose counts the pilot chooses: shadow rays at gather points,
+  // gather rays, shadow rays at glossy vertices.
+  enum PilotPart { kPilotDirect, kPilotGather, kPilotGlossy, kPilotParts };
   struct PilotSample {
-    double value = 0;              // the sample's luminance
-    // its i-th shadow-ray, gather and glossy-vertex shadow-ray samples (Probe)
-    double direct[4] = {}, gather[4] = {}, glossy[4] = {};
-    double work = 0, direct_work = 0, gather_work = 0, glossy_work = 0;
+    double value = 0;  // the sample's luminance
+    // each part's i-th sample (Probe) and the work of all of them
+    double part[kPilotParts][4] = {};
+    double work = 0, part_work[kPilotParts] = {};
   };
   std::vector<PilotSample> pilot_samples(const Scene& scene, uint64_t seed) const;
   // Final gathering by BSDF samples from eye vertex `depth`; with skip_delta, samples of delta

@@ -347,9 +347,9 @@ TEST_CASE("scene loader: sampling_weight scales how often a light is chosen", "[
   // Powers: the quad pi * 1 * mean(1, 2, 3) = 2 pi, weighted 2; each point light 4 pi, weighted 1 and 3.
   const double pi = 3.14159265358979323846;
   const double w0 = 2.0 * 2.0 * pi, w1 = 4.0 * pi, w2 = 3.0 * 4.0 * pi, sum = w0 + w1 + w2;
-  CHECK(s.light_pmf(0) == Approx(w0 / sum));
-  CHECK(s.light_pmf(1) == Approx(w1 / sum));
-  CHECK(s.light_pmf(2) == Approx(w2 / sum));
+  CHECK(s.photon_light_pmf(0) == Approx(w0 / sum));
+  CHECK(s.photon_light_pmf(1) == Approx(w1 / sum));
+  CHECK(s.photon_light_pmf(2) == Approx(w2 / sum));
   // Zero, negative, and on an object that does not emit: errors.
   std::string zero = scene_text("[" + kSphere + "]");
   zero.insert(zero.rfind('}'), R"(, "lights": [{"type": "point", "position": [0, 3, 0], "intensity": 1, "sampling_weight": 0}])");

@@ -30,4 +30,17 @@ inline std::string floor_scene(const std::string& light, double albedo = 0.5) {
     "lights": [)" + light + "]}";
 }
 
+// The same floor under a square emitter of radiance 1 and half-side `half`, 1 unit above the
+// floor's centre and facing it, seen from straight above at height camera_y (below the emitter).
+inline std::string floor_under_square_light(double half, double camera_y) {
+  const std::string a = std::to_string(half), e = std::to_string(2 * half);
+  return R"({
+    "camera": {"position": [0, )" + std::to_string(camera_y) + R"(, 0], "look_at": [0, 0, 0], "up": [0, 0, 1], "fov": 2},
+    "materials": {"floor": {"type": "diffuse", "reflectance": 0.5},
+                  "light": {"type": "diffuse", "reflectance": 0, "emission": [1, 1, 1]}},
+    "objects": [{"type": "quad", "origin": [-50, 0, -50], "edge1": [0, 0, 100], "edge2": [100, 0, 0], "material": "floor"},
+                {"type": "quad", "origin": [-)" + a + ", 1, -" + a + R"(], "edge1": [)" + e + R"(, 0, 0], "edge2": [0, 0, )" + e +
+         R"(], "material": "light"}]})";
+}
+
 }  // namespace caustica::test

@@ -3,21 +3,21 @@
 #include <set>
 #include "io/scene_loader.h"
 #include "trace/direct.h"
+#include "support/scenes.h"
 
 using namespace caustica;
 
 TEST_CASE("direct: stratified light samples choose each of n equal lights exactly once", "[trace][direct]") {
   // Four point lights of equal power around a floor point: with 4 stratified samples each light
   // is chosen once, so the estimate is the exact sum every time (independent samples vary).
-  const std::string scene_text = R"({
-    "camera": {"position": [0, 4, 0], "look_at": [0, 0, 0], "up": [0, 0, 1], "fov": 2},
-    "materials": {"floor": {"type": "diffuse", "reflectance": 0.5}},
-    "objects": [{"type": "quad", "origin": [-50, 0, -50], "edge1": [0, 0, 100], "edge2": [100, 0, 0], "material": "floor"}],
-    "lights": [{"type": "point", "position": [1, 1, 0], "intensity": [1, 1, 1]},
+  const std::string scene_text = test::floor_scene(R"({"type": "point", "position": [1, 1, 0], "intensity": [1, 1, 1]},
                {"type": "point", "position": [-1, 2, 0], "intensity": [1, 1, 1]},
                {"type": "point", "position": [0, 3, 1], "intensity": [1, 1, 1]},
-               {"type": "point", "position": [0, 1.5, -2], "intensity": [1, 1, 1]}]})";
+               {"type": "point", "position": [0, 1.5, -2], "intensity": [1, 1, 1]})");
   LoadedScene loaded = parse_scene(scene_text, "test.json", ".");
+  // (Chosen by power, the four have equal chances; the light tree would weigh them by distance.)
+  loaded.scene->render.light_sampler = LightSamplerKind::Power;
+  loaded.scene->build(loaded.scene->accel().primitives());
   const Scene& scene = *loaded.scene;
   SurfaceHit hit;
   REQUIRE(scene.intersect(Ray{Vec3(0, 4, 0), Vec3(0, -1, 0)}, hit));
@@ -50,12 +50,7 @@ TEST_CASE("direct: stratified light samples choose each of n equal lights exactl
 TEST_CASE("direct: stratified samples of an area light average to the independent samples' mean", "[trace][direct]") {
   // A 2 x 2 emitter 1 unit above a floor point: the stratified estimate is unbiased and its
   // spread is smaller than independent samples'.
-  const std::string scene_text = R"({
-    "camera": {"position": [0, 0.5, 0], "look_at": [0, 0, 0], "up": [0, 0, 1], "fov": 2},
-    "materials": {"floor": {"type": "diffuse", "reflectance": 0.5},
-                  "light": {"type": "diffuse", "reflectance": 0, "emission": [1, 1, 1]}},
-    "objects": [{"type": "quad", "origin": [-50, 0, -50], "edge1": [0, 0, 100], "edge2": [100, 0, 0], "material": "floor"},
-                {"type": "quad", "origin": [-1, 1, -1], "edge1": [2, 0, 0], "edge2": [0, 0, 2], "material": "light"}]})";
+  const std::string scene_text = test::floor_under_square_light(1, 0.5);
   LoadedScene loaded = parse_scene(scene_text, "test.json", ".");
   const Scene& scene = *loaded.scene;
   SurfaceHit hit;

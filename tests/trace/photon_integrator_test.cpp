@@ -267,12 +267,7 @@ TEST_CASE("photon: the pilot gives a floor under a wide area light more shadow r
   // A 4 x 4 emitter 1 unit above the floor, facing it: one shadow sample's irradiance varies
   // with where it lands on the emitter (cos^2 / d^2), while the pixel's own variance is tiny
   // (a narrow camera).
-  const std::string scene = R"({
-    "camera": {"position": [0, 0.9, 0], "look_at": [0, 0, 0], "up": [0, 0, 1], "fov": 2},
-    "materials": {"floor": {"type": "diffuse", "reflectance": 0.5},
-                  "light": {"type": "diffuse", "reflectance": 0, "emission": [1, 1, 1]}},
-    "objects": [{"type": "quad", "origin": [-50, 0, -50], "edge1": [0, 0, 100], "edge2": [100, 0, 0], "material": "floor"},
-                {"type": "quad", "origin": [-2, 1, -2], "edge1": [4, 0, 0], "edge2": [0, 0, 4], "material": "light"}]})";
+  const std::string scene = test::floor_under_square_light(2, 0.9);
   const Prepared p = prepare_photon(scene, "{}", 16, 2);
   const SampleCountPilot& pilot = p.photon().pilot();
   CHECK(pilot.v_direct > 0);

@@ -78,6 +78,19 @@ EmittedPhoton AreaLight::sample_emission(const Vec2& u_pos, const Vec2& u_dir) c
   return e;
 }
 
+LightBounds AreaLight::light_bounds() const {
+  LightBounds b = Light::light_bounds();
+  bool first = true;
+  for (const Primitive& p : shapes_) {
+    if (p.kind != ShapeKind::Triangle) return b;  // a sphere emits every way
+    const DirectionCone c{p.normal_at(p.p0), 1.0f};
+    b.normals = first ? c : DirectionCone::unite(b.normals, c);
+    first = false;
+    if (b.normals.cos_theta <= -1.0f) break;
+  }
+  return b;
+}
+
 Bounds AreaLight::bounds() const {
   Bounds b;
   for (const Primitive& p : shapes_) b.extend(p.bounds());

@@ -25,6 +25,8 @@ class AreaLight final : public Light {
   Color power() const override { return kPi * area_ * mean_radiance_; }
   bool is_delta() const override { return false; }
   Bounds bounds() const override;
+  // Its triangles' front-side normals in one cone (a sphere's: every direction).
+  LightBounds light_bounds() const override;
   float pdf_li(const Vec3& x, const Vec3& y, const Vec3& ny) const override;
   float area() const { return area_; }
   Color surface_radiance(const TexturePoint& at = {}) const override { return radiance_.at(at); }

@@ -4,6 +4,7 @@
 #pragma once
 #include <memory>
 #include <vector>
+#include "core/light_bounds.h"
 #include "core/sampling.h"
 #include "core/shape.h"
 
@@ -51,6 +52,9 @@ class Light {
   virtual Color surface_radiance(const TexturePoint& /*at*/ = {}) const { return Color(0.0f); }
   virtual bool is_delta() const = 0;
   virtual Bounds bounds() const = 0;
+  // For the spatial light sampler (finite lights): bounds() emitting in every direction with
+  // the power times the sampling weight, unless a light knows a tighter cone.
+  virtual LightBounds light_bounds() const;
   // Solid-angle density with which sample_li from x picks the point y (normal ny) on the light;
   // 0 for delta lights. For multiple importance sampling of BSDF-sampled hits.
   virtual float pdf_li(const Vec3& /*x*/, const Vec3& /*y*/, const Vec3& /*ny*/) const { return 0.0f; }

@@ -25,6 +25,15 @@ EmittedPhoton PointLight::sample_emission(const Vec2&, const Vec2& u_dir) const 
   return {position_, Vec3(0.0f), dir, pdf > 0.0f ? intensity_ * falloff(dir) / pdf : Color(0.0f)};
 }
 
+LightBounds PointLight::light_bounds() const {
+  LightBounds b = Light::light_bounds();
+  if (profile_) {
+    b.normals = profile_->cone();
+    if (b.normals.cos_theta > -1.0f) b.cos_theta_e = 1.0f;
+  }
+  return b;
+}
+
 Bounds PointLight::bounds() const {
   Bounds b;
   b.extend(position_);

@@ -24,6 +24,8 @@ class PointLight final : public Light {
   Color power() const override { return intensity_ * (profile_ ? profile_->integral() : Color(4.0f * kPi)); }
   bool is_delta() const override { return true; }
   Bounds bounds() const override;
+  // A profile's cone, within which it sends its intensity (cos_theta_e 1: nothing outside).
+  LightBounds light_bounds() const override;
 
  private:
   Color falloff(const Vec3& dir) const { return profile_ ? profile_->value(dir) : Color(1.0f); }

@@ -29,6 +29,13 @@ Color ProjectorProfile::value(const Vec3& dir) const {
   return image_.at(Vec2(u, v)) * (kPi * scale_ / (c * c * c));
 }
 
+DirectionCone ProjectorProfile::cone() const {
+  // Around the axis, out to the image's corners (a hair wider: rounding at the edge).
+  const float tx = tan_half_x_, ty = tan_half_x_ / aspect_;
+  const float theta = std::atan(std::sqrt(tx * tx + ty * ty));
+  return {frame_.n, std::cos(std::min(kPi, theta + 1e-3f))};
+}
+
 Vec3 ProjectorProfile::sample(const Vec2& u, float& pdf) const {
   const Vec3 local = glm::normalize(Vec3((1.0f - 2.0f * u.x) * tan_half_x_, (1.0f - 2.0f * u.y) * tan_half_x_ / aspect_, 1.0f));
   pdf = 1.0f / (area_ * local.z * local.z * local.z);

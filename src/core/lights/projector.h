@@ -24,6 +24,7 @@ class ProjectorProfile final : public EmissionProfile {
   Color value(const Vec3& dir) const override;
   Color integral() const override { return integral_; }
   Vec3 sample(const Vec2& u, float& pdf) const override;
+  DirectionCone cone() const override;
 
  private:
   Frame frame_;  // z along the axis, x to the image's left, y up

@@ -52,6 +52,10 @@ SpotProfile::SpotProfile(const Vec3& direction, float cutoff_deg, float beam_deg
   integral_ = Color(sum);
 }
 
+DirectionCone SpotProfile::cone() const {
+  return {frame_.n, std::cos(std::min(kPi, cutoff_ + 1e-3f))};  // a hair wider: rounding at the edge
+}
+
 float SpotProfile::falloff(const Vec3& dir) const {
   const float cos_t = glm::dot(dir, frame_.n);
   if (cos_t <= cos_cutoff_) return 0.0f;

@@ -5,6 +5,7 @@
 // as Mitsuba 3's spot maps its `texture`.
 #pragma once
 #include <memory>
+#include "core/light_bounds.h"
 #include "core/math.h"
 #include "core/params.h"
 #include "core/textures/texture.h"
@@ -26,6 +27,8 @@ class EmissionProfile {
   virtual Color value(const Vec3& dir) const = 0;
   virtual Color integral() const = 0;
   virtual Vec3 sample(const Vec2& u, float& pdf) const = 0;
+  // The cone outside which value() is zero (every direction unless a profile says).
+  virtual DirectionCone cone() const { return DirectionCone::everywhere(); }
 };
 
 // An orthonormal frame with z along `axis` and x along cross(up, axis) (Mitsuba's camera-like
@@ -43,6 +46,7 @@ class SpotProfile final : public EmissionProfile {
   Color integral() const override { return integral_; }
   Vec3 sample(const Vec2& u, float& pdf) const override;
   float cos_cutoff() const { return cos_cutoff_; }
+  DirectionCone cone() const override;
   const Frame& frame() const { return frame_; }
 
  private:
