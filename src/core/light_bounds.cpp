@@ -8,17 +8,6 @@ namespace {
 float safe_acos(float c) { return std::acos(std::clamp(c, -1.0f, 1.0f)); }
 float safe_sqrt(float x) { return std::sqrt(std::max(0.0f, x)); }
 
-// cos(max(0, a - b)) and sin(max(0, a - b)) from the sines and cosines of angles a, b in [0, pi].
-void subtract_clamped(float sin_a, float cos_a, float sin_b, float cos_b, float& sin_d, float& cos_d) {
-  if (cos_a >= cos_b) {  // a <= b
-    sin_d = 0.0f;
-    cos_d = 1.0f;
-    return;
-  }
-  cos_d = cos_a * cos_b + sin_a * sin_b;
-  sin_d = sin_a * cos_b - cos_a * sin_b;
-}
-
 // v turned by angle about the unit axis k (Rodrigues).
 Vec3 rotate(const Vec3& v, const Vec3& k, float angle) {
   const float c = std::cos(angle), s = std::sin(angle);
@@ -54,40 +43,16 @@ LightBounds LightBounds::unite(const LightBounds& a, const LightBounds& b) {
   return u;
 }
 
-float LightBounds::importance(const Vec3& p, const Vec3& n) const {
-  if (!(phi > 0.0f)) return 0.0f;
-  const Vec3 centre = bounds.centre();
-  const float r2 = 0.25f * glm::dot(bounds.extent(), bounds.extent());
-  const float d2_centre = glm::dot(p - centre, p - centre);
-  // Within the bounding sphere the bounds may lie in any direction (and the squared distance
-  // is clamped to its radius's, else a point at the centre would have infinite importance).
-  const float d2 = std::max({d2_centre, r2, 1e-12f});
-  float sin_b = 0.0f, cos_b = -1.0f;
-  if (d2_centre > r2) {
-    const float sin2 = r2 / d2_centre;
-    sin_b = std::sqrt(sin2);
-    cos_b = safe_sqrt(1.0f - sin2);
-  } else {
-    sin_b = 0.0f;
-  }
-  const Vec3 wi = d2_centre > 0.0f ? (p - centre) / std::sqrt(d2_centre) : normals.axis;  // light to p
-  // The angle between the cone and p's direction, less the cone's and the bounds' angles.
-  const float cos_w = glm::dot(normals.axis, wi), sin_w = safe_sqrt(1.0f - cos_w * cos_w);
-  const float cos_o = normals.cos_theta, sin_o = safe_sqrt(1.0f - cos_o * cos_o);
-  float sin_x, cos_x, sin_p, cos_p;
-  subtract_clamped(sin_w, cos_w, sin_o, cos_o, sin_x, cos_x);
-  subtract_clamped(sin_x, cos_x, sin_b, cos_b, sin_p, cos_p);
-  if (cos_p < cos_theta_e) return 0.0f;
-  // A spot's cone (cos_theta_e 1) sends its intensity undiminished within it.
-  float importance = phi * (cos_theta_e >= 1.0f ? 1.0f : std::max(cos_p, 0.0f)) / d2;
-  if (n != Vec3(0.0f)) {
-    // The least angle of incidence at p (either side: surfaces may transmit).
-    const float cos_i = std::abs(glm::dot(wi, n)), sin_i = safe_sqrt(1.0f - cos_i * cos_i);
-    float sin_q, cos_q;
-    subtract_clamped(sin_i, cos_i, sin_b, cos_b, sin_q, cos_q);
-    importance *= cos_q;
-  }
-  return importance;
-}
+CompactLightBounds::CompactLightBounds(const LightBounds& b)
+    : centre(b.bounds.centre()),
+      r2(0.25f * glm::dot(b.bounds.extent(), b.bounds.extent())),
+      r(std::sqrt(r2)),
+      axis(b.normals.axis),
+      cos_o(b.normals.cos_theta),
+      sin_o(safe_sqrt(1.0f - b.normals.cos_theta * b.normals.cos_theta)),
+      cos_e(b.cos_theta_e),
+      phi(b.phi > 0.0f ? b.phi : 0.0f) {}
+
+float LightBounds::importance(const Vec3& p, const Vec3& n) const { return CompactLightBounds(*this).importance(p, n); }
 
 }  // namespace caustica

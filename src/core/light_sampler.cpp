@@ -61,7 +61,7 @@ LightSampler::LightSampler(const std::vector<std::unique_ptr<Light>>& lights, Li
 
 void LightSampler::build(std::vector<std::pair<LightBounds, int32_t>>& items, size_t begin, size_t end, int32_t node) {
   if (end - begin == 1) {
-    nodes_[size_t(node)].bounds = items[begin].first;
+    nodes_[size_t(node)].bounds = CompactLightBounds(items[begin].first);
     nodes_[size_t(node)].light = items[begin].second;
     leaf_of_[size_t(items[begin].second)] = node;
     return;
@@ -110,9 +110,11 @@ void LightSampler::build(std::vector<std::pair<LightBounds, int32_t>>& items, si
   nodes_.emplace_back();
   nodes_[size_t(child)].parent = nodes_[size_t(child) + 1].parent = node;
   nodes_[size_t(node)].child = child;
+  LightBounds all;
+  for (size_t i = begin; i < end; ++i) all = LightBounds::unite(all, items[i].first);
+  nodes_[size_t(node)].bounds = CompactLightBounds(all);
   build(items, begin, best_mid, child);
   build(items, best_mid, end, child + 1);
-  nodes_[size_t(node)].bounds = LightBounds::unite(nodes_[size_t(child)].bounds, nodes_[size_t(child) + 1].bounds);
 }
 
 int LightSampler::sample(const Vec3& p, const Vec3& n, float u, float& pmf) const {

@@ -36,7 +36,7 @@ class LightSampler {
 
  private:
   struct Node {
-    LightBounds bounds;
+    CompactLightBounds bounds;
     int32_t child = -1;   // an inner node's first child (the second follows it); -1 for a leaf
     int32_t light = -1;   // a leaf's light
     int32_t parent = -1;
