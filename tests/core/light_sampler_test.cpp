@@ -9,6 +9,7 @@
 #include "core/lights/spot.h"
 #include "io/scene_loader.h"
 #include "support/random.h"
+#include "support/render_util.h"
 #include "support/scenes.h"
 #include "trace/direct.h"
 
@@ -220,4 +221,43 @@ TEST_CASE("light sampler: --light-sampler and the render block's light_sampler; 
   bad.insert(bad.find('{') + 1, R"("render": {"light_sampler": "bvh"},)");
   REQUIRE_THROWS_WITH(parse_scene(bad, "test.json", "."),
                       Catch::Contains("test.json: /render/light_sampler: unknown light_sampler \"bvh\" (known: tree, power)"));
+}
+
+namespace {
+// A floor and a back wall lit by a small bright quad, a wide dim one facing sideways, a sphere
+// light and a spot: the light tree weighs them differently at every point.
+std::string four_lights_scene(const char* sampler) {
+  return std::string(R"({
+    "render": {"light_sampler": ")") + sampler + R"(", "max_depth": 4},
+    "camera": {"position": [0, 2, -6], "look_at": [0, 1, 0], "up": [0, 1, 0], "fov": 60},
+    "materials": {"white": {"type": "diffuse", "reflectance": 0.6},
+                  "glossy": {"type": "roughconductor", "material": "Al", "alpha": 0.2},
+                  "bright": {"type": "diffuse", "reflectance": 0, "emission": [40, 40, 40]},
+                  "dim": {"type": "diffuse", "reflectance": 0, "emission": [0.5, 0.5, 0.5]},
+                  "ball": {"type": "diffuse", "reflectance": 0, "emission": [4, 2, 1]}},
+    "objects": [{"type": "quad", "origin": [-4, 0, -4], "edge1": [0, 0, 8], "edge2": [8, 0, 0], "material": "white"},
+                {"type": "quad", "origin": [-4, 0, 2], "edge1": [8, 0, 0], "edge2": [0, 4, 0], "material": "glossy"},
+                {"type": "quad", "origin": [1.5, 3, -0.25], "edge1": [0.5, 0, 0], "edge2": [0, 0, 0.5], "material": "bright"},
+                {"type": "quad", "origin": [-3.5, 0.2, -2], "edge1": [0, 0, 3], "edge2": [0, 2, 0], "material": "dim"},
+                {"type": "sphere", "center": [0, 0.4, 0], "radius": 0.3, "material": "ball"}],
+    "lights": [{"type": "spot", "position": [-1, 3, -1], "target": [-1, 0, 0.5], "intensity": 30, "cutoff_angle": 25}]})";
+}
+}  // namespace
+
+TEST_CASE("light tree: path and photon images agree with the power sampler's (MIS weights use the tree's probabilities)",
+          "[core][light_sampler][trace]") {
+  const auto by_power = test::render_text(four_lights_scene("power"), "path", "{}", 256, 48, 32, 3);
+  const auto by_tree = test::render_text(four_lights_scene("tree"), "path", "{}", 256, 48, 32, 4);
+  const auto photon = test::render_text(four_lights_scene("tree"), "photon", "{}", 64, 48, 32, 5);
+  const glm::dvec3 reference = test::region_mean(by_power.image, 0, 0, 48, 32);
+  REQUIRE(reference.x > 0.05);
+  CHECK(test::region_mean(by_tree.image, 0, 0, 48, 32).x == Approx(reference.x).epsilon(0.02));
+  CHECK(test::region_mean(photon.image, 0, 0, 48, 32).x == Approx(reference.x).epsilon(0.03));
+  // Region by region (6 of 8 x 8 pixels): the floor under each light, the wall's reflections.
+  for (int y = 0; y < 32; y += 8)
+    for (int x = 0; x < 48; x += 8) {
+      const double r = test::region_mean(by_power.image, x, y, x + 8, y + 8).x;
+      if (r < 0.02) continue;
+      CHECK(test::region_mean(by_tree.image, x, y, x + 8, y + 8).x == Approx(r).epsilon(0.06));
+    }
 }
