@@ -205,3 +205,51 @@ TEST_CASE("density: a k-NN estimate of a uniform photon density is unbiased", "[
   INFO("mean estimate / true density " << ratio << " (k / (k - 1) = " << 10.0 / 9.0 << ")");
   CHECK(ratio == Approx(1.0).margin(0.03));
 }
+
+// The precomputed irradiance, read by lookups at points between its sites, on a uniform photon
+// density: where IrradianceCache::unbiased_for admits the settings (enough photons left in the
+// shrunk disc), its mean is the density; the integrator uses full estimates elsewhere.
+TEST_CASE("density: the precomputed irradiance is used only where it reads a uniform density without bias",
+          "[photon][density][progressive]") {
+  int admitted = 0;
+  for (const int k : {10, 20, 50}) {
+    for (const float scale : {1.0f, 0.5f, 0.2f, 0.1f, 0.05f}) {
+      EstimateSettings s;
+      s.k = k;
+      s.max_radius = 1.0f;
+      s.radius2_scale = scale;
+      if (!IrradianceCache::unbiased_for(s)) continue;
+      ++admitted;
+      Rng rng(91);
+      std::vector<Neighbour> scratch;
+      double sum = 0;
+      int count = 0;
+      constexpr size_t kPhotons = 4000;
+      for (int m = 0; m < 40; ++m) {
+        std::vector<Photon> v;
+        for (size_t i = 0; i < kPhotons; ++i) v.push_back(at(2 * rng.next_float() - 1, 2 * rng.next_float() - 1, 1.0f, 0));
+        PhotonMap map;
+        map.build(std::move(v), 1.0f);
+        IrradianceCache cache;
+        cache.build(map, 1, s);
+        for (int qy = -2; qy <= 2; ++qy)
+          for (int qx = -2; qx <= 2; ++qx) {
+            Color E;
+            REQUIRE(cache.lookup(Vec3(0.3f * qx + 0.01f, 0.3f * qy, 0), Vec3(0, 0, 1), 0.5f, 0, E, scratch));
+            sum += double(E.x);
+            ++count;
+          }
+      }
+      const double ratio = sum / count / (double(kPhotons) / 4.0);
+      INFO("k " << k << ", radius2_scale " << scale << ": mean cached irradiance / true density " << ratio);
+      CHECK(ratio == Approx(1.0).margin(0.025));
+    }
+  }
+  // (k, scale) = (10, 1), (20, 1), (20, 0.5), (50, 1), (50, 0.5), (50, 0.2): the cache serves the
+  // first passes; (50, 0.1), which read 1.046, is left to full estimates.
+  CHECK(admitted == 6);
+  EstimateSettings late;
+  late.k = 50;
+  late.radius2_scale = 0.1f;
+  CHECK_FALSE(IrradianceCache::unbiased_for(late));
+}
