@@ -53,6 +53,4 @@ CompactLightBounds::CompactLightBounds(const LightBounds& b)
       cos_e(b.cos_theta_e),
       phi(b.phi > 0.0f ? b.phi : 0.0f) {}
 
-float LightBounds::importance(const Vec3& p, const Vec3& n) const { return CompactLightBounds(*this).importance(p, n); }
-
 }  // namespace caustica

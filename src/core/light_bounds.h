@@ -26,15 +26,10 @@ struct LightBounds {
   float cos_theta_e = 0.0f;
   float phi = 0.0f;  // power (luminance-like scalar) times the light's sampling weight
 
-  // An estimate of the light reaching p, a point with normal n (zero: no normal), from anything
-  // these bounds hold: phi over the squared distance, times the cosine of the least angle
-  // between the emitting cone and p's direction and, with a normal, of the least angle of
-  // incidence. Zero only where no point and direction of the bounds can light p.
-  float importance(const Vec3& p, const Vec3& n) const;
   static LightBounds unite(const LightBounds& a, const LightBounds& b);
 };
 
-// The same bounds as the importance reads them (every shadow ray evaluates a few): the box's
+// The same bounds as their importance reads them (every shadow ray evaluates a few): the box's
 // centre and half-diagonal, the cone's sine and cosine.
 struct CompactLightBounds {
   Vec3 centre{0.0f};
@@ -43,8 +38,12 @@ struct CompactLightBounds {
   float cos_o = -1.0f, sin_o = 0.0f, cos_e = 0.0f, phi = 0.0f;
   CompactLightBounds() = default;
   explicit CompactLightBounds(const LightBounds& b);
-  // LightBounds::importance, with one division and one square root where the bounds are a
-  // point or emit every way (more only where a cone or the normal needs the angle subtracted).
+  // An estimate of the light reaching p, a point with normal n (zero: no normal), from anything
+  // these bounds hold: phi over the squared distance, times the cosine of the least angle
+  // between the emitting cone and p's direction and, with a normal, of the least angle of
+  // incidence. Zero only where no point and direction of the bounds can light p. One division
+  // and one square root where the bounds are a point or emit every way (more only where a cone
+  // or the normal needs the angle subtracted).
   float importance(const Vec3& p, const Vec3& n) const {
     const Vec3 d = p - centre;
     const float d2 = glm::dot(d, d);

@@ -5,6 +5,17 @@
 
 namespace caustica {
 namespace {
+using Item = std::pair<LightBounds, int32_t>;  // a light's bounds and index
+
+// Sorts items[begin, end) by their boxes' centres along axis (the light's index breaks ties:
+// the tree is the same on every run), or by index alone for axis -1.
+void sort_items(std::vector<Item>& items, size_t begin, size_t end, int axis) {
+  std::sort(items.begin() + std::ptrdiff_t(begin), items.begin() + std::ptrdiff_t(end), [axis](const Item& a, const Item& b) {
+    const float ca = axis < 0 ? 0.0f : a.first.bounds.centre()[axis], cb = axis < 0 ? 0.0f : b.first.bounds.centre()[axis];
+    return ca < cb || (ca == cb && a.second < b.second);
+  });
+}
+
 // A number in [0, 1): rescaled sample numbers must not reach 1.
 float below_one(float u) { return std::min(u, 0x1.fffffep-1f); }
 
@@ -34,12 +45,12 @@ const char* light_sampler_name(LightSamplerKind kind) { return kind == LightSamp
 
 LightSampler::LightSampler(const std::vector<std::unique_ptr<Light>>& lights, LightSamplerKind kind) : kind_(kind) {
   std::vector<float> powers, infinite_powers;
-  for (const auto& light : lights) powers.push_back(std::max(0.0f, average(light->power())) * light->sampling_weight());
+  for (const auto& light : lights) powers.push_back(light->sampling_power());
   by_power_ = Distribution1D(powers.data(), powers.size());
   if (kind_ != LightSamplerKind::Tree) return;
   leaf_of_.assign(lights.size(), -1);
   infinite_index_.assign(lights.size(), -1);
-  std::vector<std::pair<LightBounds, int32_t>> items;
+  std::vector<Item> items;
   for (size_t i = 0; i < lights.size(); ++i) {
     if (lights[i]->is_infinite()) {
       infinite_index_[i] = int32_t(infinite_.size());
@@ -59,15 +70,14 @@ LightSampler::LightSampler(const std::vector<std::unique_ptr<Light>>& lights, Li
   p_infinite_ = infinite_.empty() ? 0.0f : nodes_.empty() ? 1.0f : float(infinite_.size()) / float(infinite_.size() + 1);
 }
 
-void LightSampler::build(std::vector<std::pair<LightBounds, int32_t>>& items, size_t begin, size_t end, int32_t node) {
+void LightSampler::build(std::vector<Item>& items, size_t begin, size_t end, int32_t node) {
   if (end - begin == 1) {
     nodes_[size_t(node)].bounds = CompactLightBounds(items[begin].first);
     nodes_[size_t(node)].light = items[begin].second;
     leaf_of_[size_t(items[begin].second)] = node;
     return;
   }
-  // The split of least cost over the three axes, the items sorted by their boxes' centres
-  // (the light's index breaks ties: the tree is the same on every run).
+  // The split of least cost over the three axes, the items sorted by their boxes' centres.
   Bounds centres;
   for (size_t i = begin; i < end; ++i) centres.extend(items[i].first.bounds.centre());
   size_t best_mid = begin + (end - begin) / 2;
@@ -76,11 +86,7 @@ void LightSampler::build(std::vector<std::pair<LightBounds, int32_t>>& items, si
   std::vector<double> left_cost(end - begin);
   for (int axis = 0; axis < 3; ++axis) {
     if (!(centres.hi[axis] > centres.lo[axis])) continue;
-    auto by_axis = [axis](const std::pair<LightBounds, int32_t>& a, const std::pair<LightBounds, int32_t>& b) {
-      const float ca = a.first.bounds.centre()[axis], cb = b.first.bounds.centre()[axis];
-      return ca < cb || (ca == cb && a.second < b.second);
-    };
-    std::sort(items.begin() + std::ptrdiff_t(begin), items.begin() + std::ptrdiff_t(end), by_axis);
+    sort_items(items, begin, end, axis);
     LightBounds acc;
     for (size_t i = begin; i + 1 < end; ++i) {
       acc = LightBounds::unite(acc, items[i].first);
@@ -93,18 +99,7 @@ void LightSampler::build(std::vector<std::pair<LightBounds, int32_t>>& items, si
       if (cost < best_cost) best_cost = cost, best_mid = i, best_axis = axis;
     }
   }
-  if (best_axis >= 0 && best_axis < 2) {
-    // (The last axis sorted was z: sort again by the best one.)
-    auto by_axis = [best_axis](const std::pair<LightBounds, int32_t>& a, const std::pair<LightBounds, int32_t>& b) {
-      const float ca = a.first.bounds.centre()[best_axis], cb = b.first.bounds.centre()[best_axis];
-      return ca < cb || (ca == cb && a.second < b.second);
-    };
-    std::sort(items.begin() + std::ptrdiff_t(begin), items.begin() + std::ptrdiff_t(end), by_axis);
-  } else if (best_axis < 0) {
-    // Every centre the same: halves in index order.
-    std::sort(items.begin() + std::ptrdiff_t(begin), items.begin() + std::ptrdiff_t(end),
-              [](const auto& a, const auto& b) { return a.second < b.second; });
-  }
+  sort_items(items, begin, end, best_axis);  // (every centre the same: halves in index order)
   const int32_t child = int32_t(nodes_.size());
   nodes_.emplace_back();
   nodes_.emplace_back();
@@ -115,6 +110,11 @@ void LightSampler::build(std::vector<std::pair<LightBounds, int32_t>>& items, si
   nodes_[size_t(node)].bounds = CompactLightBounds(all);
   build(items, begin, best_mid, child);
   build(items, best_mid, end, child + 1);
+}
+
+float LightSampler::first_child_share(int32_t c, const Vec3& p, const Vec3& n) const {
+  const float i0 = nodes_[size_t(c)].bounds.importance(p, n), i1 = nodes_[size_t(c) + 1].bounds.importance(p, n);
+  return i0 + i1 > 0.0f ? i0 / (i0 + i1) : -1.0f;
 }
 
 int LightSampler::sample(const Vec3& p, const Vec3& n, float u, float& pmf) const {
@@ -137,9 +137,8 @@ int LightSampler::sample(const Vec3& p, const Vec3& n, float u, float& pmf) cons
   int32_t node = 0;
   while (nodes_[size_t(node)].child >= 0) {
     const int32_t c = nodes_[size_t(node)].child;
-    const float i0 = nodes_[size_t(c)].bounds.importance(p, n), i1 = nodes_[size_t(c) + 1].bounds.importance(p, n);
-    if (!(i0 + i1 > 0.0f)) return -1;
-    const float p0 = i0 / (i0 + i1);
+    const float p0 = first_child_share(c, p, n);
+    if (p0 < 0.0f) return -1;
     if (u < p0) {
       node = c;
       u = below_one(u / p0);
@@ -163,9 +162,9 @@ float LightSampler::pmf(const Vec3& p, const Vec3& n, size_t i) const {
   float prob = 1.0f - p_infinite_;
   while (nodes_[size_t(node)].parent >= 0) {
     const int32_t parent = nodes_[size_t(node)].parent, c = nodes_[size_t(parent)].child;
-    const float i0 = nodes_[size_t(c)].bounds.importance(p, n), i1 = nodes_[size_t(c) + 1].bounds.importance(p, n);
-    if (!(i0 + i1 > 0.0f)) return 0.0f;
-    prob *= node == c ? i0 / (i0 + i1) : 1.0f - i0 / (i0 + i1);
+    const float p0 = first_child_share(c, p, n);
+    if (p0 < 0.0f) return 0.0f;
+    prob *= node == c ? p0 : 1.0f - p0;
     node = parent;
   }
   return prob;

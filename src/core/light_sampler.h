@@ -31,7 +31,6 @@ class LightSampler {
   // In proportion to power times sampling weight, wherever (photon emission; "power").
   size_t sample_by_power(float u, float& pmf) const { return by_power_.sample(u, &pmf); }
   float pmf_by_power(size_t i) const { return by_power_.pmf(i); }
-  LightSamplerKind kind() const { return kind_; }
   size_t nodes() const { return nodes_.size(); }
 
  private:
@@ -43,6 +42,9 @@ class LightSampler {
   };
   // Makes node the root of a subtree over items[begin, end).
   void build(std::vector<std::pair<LightBounds, int32_t>>& items, size_t begin, size_t end, int32_t node);
+  // The chance that the descent at a node takes its first child c rather than c + 1 (their
+  // importances' share at p, n); negative where neither can light p.
+  float first_child_share(int32_t c, const Vec3& p, const Vec3& n) const;
   LightSamplerKind kind_ = LightSamplerKind::Tree;
   Distribution1D by_power_;           // every light ("power"; photon emission)
   std::vector<size_t> infinite_;      // "tree": the lights at infinity,

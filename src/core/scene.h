@@ -80,7 +80,6 @@ class Scene {
   // Chooses a light to emit a photon, in proportion to its power (times its sampling weight).
   const Light* sample_photon_light(float u, float& pmf) const;
   float photon_light_pmf(size_t i) const { return light_sampler_.pmf_by_power(i); }
-  const LightSampler& light_sampler() const { return light_sampler_; }
   // Radiance that the surface at `hit` emits towards local direction wo (its area light's, front
   // side only).
   Color emitted(const SurfaceHit& hit, const Vec3& wo_local) const {

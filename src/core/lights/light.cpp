@@ -1,6 +1,5 @@
 // What every light shares.
 #include "core/lights/light.h"
-#include <algorithm>
 
 namespace caustica {
 
@@ -9,7 +8,7 @@ LightBounds Light::light_bounds() const {
   b.bounds = bounds();
   b.normals = DirectionCone::everywhere();
   b.cos_theta_e = 0.0f;
-  b.phi = std::max(0.0f, average(power())) * sampling_weight();
+  b.phi = sampling_power();
   return b;
 }
 

@@ -76,6 +76,8 @@ class Light {
   // their power times this weight; estimates divide by the probability, so the image's
   // expectation does not change, only where the samples go.
   float sampling_weight() const { return sampling_weight_; }
+  // What lights are chosen in proportion to (by power): average power times the weight.
+  float sampling_power() const { return std::max(0.0f, average(power())) * sampling_weight_; }
   void set_sampling_weight(float w) { sampling_weight_ = w; }
 
  private:
