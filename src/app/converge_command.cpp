@@ -115,7 +115,8 @@ int run_converge(const ConvergeArgs& args) {
     Integrator& integ = *integrators[i];
     const std::string name = args.integrators[i];
     const auto t0 = std::chrono::steady_clock::now();
-    integ.preprocess(scene, {scene.render.seed, quiet, &StopSignals::flag(), cluster.rank()});
+    integ.preprocess(scene, {scene.render.seed, quiet, &StopSignals::flag(), cluster.rank(), scene.render.spp, args.time,
+                             cluster.size()});
     const double pre = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     size_t next = 0;
     ReportSeries series{name, {}};

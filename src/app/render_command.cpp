@@ -66,7 +66,7 @@ int run_render(const RenderArgs& args) {
   StopSignals stop_signals;
   const bool quiet = args.common.quiet || !cluster.root();  // one progress bar and report: rank 0's
   const RenderJob job = render_job(rs, args.time ? *args.time : 0.0);
-  PreprocessContext pre{job.seed, quiet, &StopSignals::flag(), cluster.rank()};
+  PreprocessContext pre{job.seed, quiet, &StopSignals::flag(), cluster.rank(), job.passes, job.time_budget, cluster.size()};
   const auto t0 = std::chrono::steady_clock::now();
   integrator->preprocess(scene, pre);
   const double preprocess_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

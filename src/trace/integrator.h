@@ -20,6 +20,12 @@ struct PreprocessContext {
   bool quiet = false;
   const std::atomic<bool>* cancel = nullptr;  // set (e.g. by SIGINT) to stop early
   int first_pass = 0;  // a progressive integrator's first pass here (an MPI rank's: its rank)
+  // What the render will take, when known: its passes (samples per pixel) or, with a time
+  // budget, seconds, over `ranks` processes. An integrator may weigh its choices by it (the
+  // photon mapper's pilot: the bias of its progressive radii falls with the passes).
+  int passes = 0;
+  double time_budget = 0;
+  int ranks = 1;
 };
 
 class Integrator {

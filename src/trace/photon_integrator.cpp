@@ -3,8 +3,10 @@
 #include "trace/photon_integrator.h"
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <iomanip>
 #include <iostream>
+#include <limits>
 #include <sstream>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
@@ -104,6 +106,8 @@ std::unique_ptr<Integrator> PhotonIntegrator::create_direct(const Params& p, con
 }
 
 void PhotonIntegrator::preprocess(const Scene& scene, const PreprocessContext& context) {
+  preprocess_start_ = std::chrono::steady_clock::now();
+  horizon_work_ = -1;
   const size_t for_image = PhotonSettings::photons_for_image(scene.camera.width(), scene.camera.height());
   if (settings_.photons_from_image) settings_.photons = for_image;
   if (settings_.caustic_photons_from_image) settings_.caustic_photons = for_image;
@@ -164,6 +168,14 @@ bool PhotonIntegrator::begin_pass(const Scene& scene, int pass, const Preprocess
   build_irradiance();
   built_pass_ = pass;
   return true;
+}
+
+void PhotonIntegrator::set_disc_photons(int factor) {
+  global_est_.k = size_t(settings_.global_k) * size_t(factor);
+  caustic_est_.k = size_t(settings_.caustic_k) * size_t(factor);
+  const double pass_cost = photon_pass_cost_;  // (the pass's cost is its maps' and first precomputation's)
+  build_irradiance();
+  photon_pass_cost_ = pass_cost;
 }
 
 void PhotonIntegrator::build_irradiance() {
@@ -451,6 +463,36 @@ std::vector<double> optimal_sample_counts(double v0, double c0, const std::vecto
   return count;
 }
 
+namespace {
+// The means over passes 0 .. n - 1 of the radius2 scale S(p) and of S(p)^-growth. S(p) is
+// Gamma(p + 1 + alpha) / (Gamma(1 + alpha) Gamma(p + 2)) (progressive_radius2_scale's product),
+// so long horizons are summed in blocks of p / 128 passes at their middle pass's value.
+struct ProgressiveMeans {
+  double scale = 1, inverse = 1;
+};
+ProgressiveMeans progressive_means(double passes, double alpha, double growth) {
+  const double n = std::floor(std::clamp(passes, 1.0, 1e9));
+  const double lg0 = std::lgamma(1.0 + alpha);
+  auto log_scale = [&](double p) { return std::lgamma(p + 1.0 + alpha) - lg0 - std::lgamma(p + 2.0); };
+  double sum = 0, sum_inverse = 0;
+  for (double p = 0; p < n;) {
+    const double len = std::min(n - p, std::max(1.0, std::floor(p / 128.0)));
+    const double ls = log_scale(p + 0.5 * (len - 1.0));
+    sum += len * std::exp(ls);
+    sum_inverse += len * std::exp(-growth * ls);
+    p += len;
+  }
+  return {sum / n, sum_inverse / n};
+}
+}  // namespace
+
+double progressive_error(double v_rest, double v_maps, double growth, double bias2, double scale, double passes,
+                         double alpha) {
+  const double n = std::floor(std::clamp(passes, 1.0, 1e9));
+  const ProgressiveMeans m = progressive_means(n, alpha, growth);
+  return (v_rest + v_maps * m.inverse / scale) / n + bias2 * m.scale * m.scale / (scale * scale);
+}
+
 std::vector<PhotonIntegrator::PilotSample> PhotonIntegrator::pilot_samples(const Scene& scene, uint64_t seed) const {
   const int w = scene.camera.width(), h = scene.camera.height();
   const int gx = std::min(w, kPilotGrid), gy = std::min(h, kPilotGrid);
@@ -519,21 +561,45 @@ bool PhotonIntegrator::choose_sample_counts(const Scene& scene, const Preprocess
 bool PhotonIntegrator::pilot_and_choose(const Scene& scene, const PreprocessContext& context, bool choose_photons,
                                         double& error) {
   constexpr int P = Probe::kSamples, M = kPilotPerPixel;
+  // The bias of the progressive radii, where the photons are chosen and the render's length is
+  // known (the bias falls with the passes, the variance with the samples): the same samples
+  // once more on each pass's maps with kWide times the photons per disc (k), so kWide times its
+  // area. Taking the bias as growing with r^2 (as Knaus and Zwicker 2011 do), the difference
+  // is kWide - 1 times a pass's bias; the product of two maps' differences has no map noise in
+  // it. (Wider, not narrower, discs: a disc of k / 4 photons is so noisy that the difference
+  // drowned in the maps' noise, 5x apart between seeds on env-preview.)
+  const bool measure_bias = settings_.progressive && choose_photons && (context.passes > 0 || context.time_budget > 0);
+  constexpr int kWide = 4;
   // Progressive: the same samples on pass 1's maps and then on pass 0's tell the part of the
   // variance that is the maps' own (a pass's maps are shared by all its pixels' samples, so
   // the spread of one map's samples misses it).
-  std::vector<PilotSample> other;
+  std::vector<PilotSample> other, other_wide, samples_wide;
   const int passes = stats_.passes;
+  float other_scale2 = 1.0f;
   if (settings_.progressive) {
     if (!begin_pass(scene, 1, context)) return false;
     other = pilot_samples(scene, context.seed);
+    other_scale2 = global_est_.radius2_scale;
+    if (measure_bias) {
+      set_disc_photons(kWide);
+      other_wide = pilot_samples(scene, context.seed);
+      set_disc_photons(1);
+    }
     if (!begin_pass(scene, 0, context)) return false;
     // The pilot's photon passes are its own (pass 0's maps serve the render if their counts
     // stay: preprocess).
     stats_.pilot_passes += stats_.passes - passes;
     stats_.passes = passes;
   }
+  const auto t_samples = std::chrono::steady_clock::now();
   const std::vector<PilotSample> samples = pilot_samples(scene, context.seed);
+  const double samples_seconds = seconds_since(t_samples);
+  if (measure_bias) {
+    set_disc_photons(kWide);
+    samples_wide = pilot_samples(scene, context.seed);
+    set_disc_photons(1);
+  }
+  if (context.cancel && context.cancel->load()) return false;
   auto sample_variance = [](const double* v, int n) {
     double mean = 0, ss = 0;
     for (int i = 0; i < n; ++i) mean += v[i];
@@ -545,7 +611,7 @@ bool PhotonIntegrator::pilot_and_choose(const Scene& scene, const PreprocessCont
   SampleCountPilot r;
   r.ran = true;
   r.samples = int(samples.size());
-  double work = 0, part_work[kPilotParts] = {};
+  double work = 0, part_work[kPilotParts] = {}, v_maps_wide = 0;
   const size_t pixels = samples.size() / M;
   const int gx = std::min(scene.camera.width(), kPilotGrid), gy = int(pixels) / gx;
   std::vector<double> neighbours_mean(pixels, 0.0);
@@ -561,9 +627,18 @@ bool PhotonIntegrator::pilot_and_choose(const Scene& scene, const PreprocessCont
         }
       neighbours_mean[size_t(y) * size_t(gx) + size_t(x)] = count > 0 ? sum / count : 0.0;
     }
+  // The maps' variance in a camera sample, from the same samples on two passes' maps: the mean
+  // of the gather rays' differences has the per-ray part of the maps' noise (already in the
+  // gather rays' spread) over P; the rest is shared.
+  auto maps_variance = [&](const PilotSample& a, const PilotSample& b) {
+    double d[P];
+    for (int i = 0; i < P; ++i) d[i] = a.part[kPilotGather][i] - b.part[kPilotGather][i];
+    const double e = a.value - b.value;
+    return 0.5 * e * e - 0.5 * sample_variance(d, P) / P;
+  };
   for (size_t px = 0; px < pixels; ++px) {
     const PilotSample* s = &samples[px * M];
-    double values[M], mean = 0, v_part[kPilotParts] = {}, v_maps = 0;
+    double values[M], mean = 0, v_part[kPilotParts] = {}, v_maps = 0, v_wide = 0;
     for (int j = 0; j < M; ++j) {
       values[j] = s[j].value;
       mean += s[j].value / M;
@@ -572,15 +647,8 @@ bool PhotonIntegrator::pilot_and_choose(const Scene& scene, const PreprocessCont
         v_part[k] += sample_variance(s[j].part[k], P) / M;
         part_work[k] += s[j].part_work[k];
       }
-      if (!other.empty()) {
-        // The two maps' difference: the mean of the gather rays' differences has the per-ray
-        // part of the maps' noise (already in the gather rays' spread) over P; the rest is shared.
-        const PilotSample& o = other[px * M + size_t(j)];
-        double d[P];
-        for (int i = 0; i < P; ++i) d[i] = s[j].part[kPilotGather][i] - o.part[kPilotGather][i];
-        const double e = s[j].value - o.value;
-        v_maps += (0.5 * e * e - 0.5 * sample_variance(d, P) / P) / M;
-      }
+      if (!other.empty()) v_maps += maps_variance(s[j], other[px * M + size_t(j)]) / M;
+      if (measure_bias) v_wide += maps_variance(samples_wide[px * M + size_t(j)], other_wide[px * M + size_t(j)]) / M;
     }
     // As the relMSE weighs a pixel's error, 1 / (reference^2 + 0.01), with the mean of the
     // neighbouring pilot pixels' samples for the reference: the pixel's own would let its
@@ -592,8 +660,23 @@ bool PhotonIntegrator::pilot_and_choose(const Scene& scene, const PreprocessCont
     r.v_gather += weight * v_part[kPilotGather];
     r.v_glossy += weight * v_part[kPilotGlossy];
     r.v_maps += weight * v_maps;
+    if (measure_bias) {
+      // Each sample's bias at its pass's first radii, b = (L(s) - L(s / 4)) / (3 s / 4). A
+      // product of b on different maps and different camera samples has expectation the
+      // pixel's bias squared (no noise of either is shared): the mean of all such pairs.
+      double a[M], b[M], sum_a = 0, sum_b = 0, same = 0;
+      for (int j = 0; j < M; ++j) {
+        const size_t i = px * M + size_t(j);
+        a[j] = (samples_wide[i].value - samples[i].value) / (kWide - 1);
+        b[j] = (other_wide[i].value - other[i].value) / ((kWide - 1) * other_scale2);
+        sum_a += a[j], sum_b += b[j], same += a[j] * b[j];
+      }
+      r.bias2 += weight * (sum_a * sum_b - same) / (M * (M - 1));
+      v_maps_wide += weight * v_wide;
+    }
   }
-  for (double* v : {&r.v_pixel, &r.v_direct, &r.v_gather, &r.v_glossy, &r.v_maps}) *v /= double(pixels);
+  for (double* v : {&r.v_pixel, &r.v_direct, &r.v_gather, &r.v_glossy, &r.v_maps, &r.bias2, &v_maps_wide})
+    *v /= double(pixels);
   r.v_maps = std::max(r.v_maps, 0.0);
   const double n = double(samples.size());
   r.c_direct = part_work[kPilotDirect] / (n * P);
@@ -603,7 +686,12 @@ bool PhotonIntegrator::pilot_and_choose(const Scene& scene, const PreprocessCont
   // The photon pass is traced once per image pass: each pixel's sample carries its share.
   const int w = scene.camera.width(), h = scene.camera.height();
   r.c_maps = settings_.progressive ? photon_pass_cost_ / (double(w) * double(h)) : 0.0;
-  pilot_ = r;
+  if (measure_bias) {
+    r.measured_bias = true;
+    r.bias2 = std::max(r.bias2, 0.0);
+    // The maps' variance at the discs' area against at kWide times it.
+    r.maps_growth = r.v_maps > 0 && v_maps_wide > 0 ? std::clamp(std::log(r.v_maps / v_maps_wide) / std::log(double(kWide)), 0.0, 1.0) : 0.0;
+  }
 
   // The counts not given, for the least error at equal time (optimal_sample_counts); those
   // given (and the photons, when not chosen) join the fixed part.
@@ -617,30 +705,71 @@ bool PhotonIntegrator::pilot_and_choose(const Scene& scene, const PreprocessCont
     if (!given[i]) parts.push_back({v[i], c[i], 1.0, double(kMaxSampleCount)});
     else if (*counts[i] > 0) v0 += v[i] / *counts[i], c0 += c[i] * *counts[i];
   }
-  // The maps' variance and cost both scale with the photons per pass.
-  if (choose_photons) parts.push_back({r.v_maps, r.c_maps, kMinPhotonScale, kMaxPhotonScale});
-  else v0 += r.v_maps, c0 += r.c_maps;
+  if (!choose_photons) v0 += r.v_maps, c0 += r.c_maps;
   // V0 is never taken as below a hundredth of the rest (noise in the pilot's difference can
   // make it 0 or negative).
   v0 = std::max(v0, 0.01 * (r.v_direct + r.v_gather + r.v_glossy + r.v_maps));
-  const std::vector<double> chosen = optimal_sample_counts(v0, c0, parts);
-  size_t next = 0;
-  for (int i = 0; i < 3; ++i)
-    if (!given[i]) *counts[i] = int(std::lround(chosen[next++]));
-  // The error at equal time the counts give (relMSE-weighted variance times work per sample).
-  {
-    double ve = v0, ce = c0;
-    size_t k = 0;
-    for (int i = 0; i < 3; ++i)
-      if (!given[i]) ve += v[i] / *counts[i], ce += c[i] * *counts[i], ++k;
-    if (choose_photons) ve += r.v_maps / chosen[k], ce += r.c_maps * chosen[k];
-    error = ve * ce;
-    pilot_.error = error;
+  // The counts' variance and work per sample, with the photons scaled by x (the maps' variance
+  // and cost both scale with the photons per pass).
+  // The maps' variance in one pass's sample, averaged over the passes (it grows as the radii
+  // shrink), with the photons scaled by x.
+  auto v_maps_per_sample = [&](const SampleCountPilot& p, double x, double passes) {
+    return progressive_error(0, p.v_maps, p.maps_growth, 0, x, passes, settings_.alpha) * std::floor(std::max(passes, 1.0));
+  };
+  auto per_sample = [&](const std::vector<double>& chosen, double x, double& ve, double& ce) {
+    ve = v0, ce = c0 + (choose_photons ? r.c_maps * x : 0.0);
+    for (size_t i = 0; i < parts.size(); ++i) ve += parts[i].v / chosen[i], ce += parts[i].c * chosen[i];
+  };
+  // Without the bias: the least variance times work per sample (the maps a part like the rest).
+  std::vector<SampleCountPart> with_maps = parts;
+  if (choose_photons) with_maps.push_back({r.v_maps, r.c_maps, kMinPhotonScale, kMaxPhotonScale});
+  std::vector<double> chosen = optimal_sample_counts(v0, c0, with_maps);
+  double x = choose_photons ? chosen.back() : 1.0;
+  if (choose_photons) chosen.pop_back();
+  double ve = 0, ce = 0;
+  per_sample(chosen, x, ve, ce);
+  error = (ve + (choose_photons ? r.v_maps / x : 0.0)) * ce;
+  if (r.measured_bias) {
+    // Under a time budget, the render's work per pixel: the budget (less the time spent so
+    // far) at the pilot's rate of work, kept for a second pilot (choose_sample_counts) so that
+    // both choices are weighed alike. Given passes, those.
+    const bool timed = context.time_budget > 0;
+    if (timed && horizon_work_ < 0) {
+      const double rate = samples_seconds > 0 ? work / samples_seconds : 0.0;  // work per second
+      const double left = std::max(0.0, context.time_budget * std::max(1, context.ranks) - seconds_since(preprocess_start_));
+      horizon_work_ = std::max(ce, left * rate / (double(w) * double(h)));
+    }
+    // For each photon scale on a grid: the counts for its variance at the passes it will
+    // take (a fixed point under a budget, as the maps' variance grows with the passes) and the
+    // error there; under a budget the least error, given passes the least error times the
+    // work (the error at equal time).
+    double best = std::numeric_limits<double>::infinity();
+    for (int i = 0; i <= 48; ++i) {
+      const double xi = kMinPhotonScale * std::pow(kMaxPhotonScale / kMinPhotonScale, i / 48.0);
+      double passes_i = timed ? 1.0 : double(context.passes);
+      std::vector<double> ci;
+      double vi = 0, cw = 0;
+      for (int it = 0; it < (timed ? 4 : 1); ++it) {
+        const double grown = v_maps_per_sample(r, xi, passes_i);
+        ci = optimal_sample_counts(v0 + grown, c0 + r.c_maps * xi, parts);
+        per_sample(ci, xi, vi, cw);
+        if (timed) passes_i = std::max(1.0, horizon_work_ / cw);
+      }
+      const double e = progressive_error(vi, r.v_maps, r.maps_growth, r.bias2, xi, passes_i, settings_.alpha);
+      const double score = timed ? e : e * cw;
+      if (score < best) best = score, x = xi, chosen = ci, r.horizon_passes = passes_i;
+    }
+    // In the units of the error without the bias (variance times work per sample).
+    error = best * (timed ? horizon_work_ : double(context.passes));
   }
+  for (int i = 0, next = 0; i < 3; ++i)
+    if (!given[i]) *counts[i] = int(std::lround(chosen[size_t(next++)]));
+  r.error = error;
+  pilot_ = r;
   if (choose_photons) {
-    pilot_.photon_scale = chosen[next];
+    pilot_.photon_scale = x;
     auto scaled = [&](size_t photons) {
-      return std::clamp(size_t(double(photons) * pilot_.photon_scale), PhotonSettings::kMinProgressivePhotons / 4,
+      return std::clamp(size_t(double(photons) * x), PhotonSettings::kMinProgressivePhotons / 4,
                         PhotonSettings::kMaxProgressivePhotons);
     };
     if (settings_.photons_from_image) settings_.photons = scaled(settings_.photons);
@@ -669,6 +798,10 @@ std::string PhotonIntegrator::describe() const {
         << pilot_.v_glossy << ", " << pilot_.c_glossy << "; the photon maps " << pilot_.v_maps
         << ", " << pilot_.c_maps << " (photons scaled by " << pilot_.photon_scale << "); error at equal time "
         << pilot_.error << "\n";
+    if (pilot_.measured_bias)
+      s << "pilot, the progressive radii's bias: squared at the first radii " << pilot_.bias2
+        << " (relMSE-weighted), the maps' variance as (r^2)^-" << pilot_.maps_growth << ", for "
+        << std::lround(pilot_.horizon_passes) << " passes expected\n";
     if (pilot_.compared_caustic_threshold)
       s << "caustic threshold: " << settings_.caustic_threshold << " (the pilot's choice of it and 0)\n";
     s << "precomputed irradiance: " << (settings_.irradiance_stride > 0 ? "every " + std::to_string(settings_.irradiance_stride) + "th global photon (" + std::to_string(irradiance_.size()) + " points" + (irradiance_.size() == 0 && !global_.empty() ? ": the last passes' discs were too small for it, full estimates" : "") + ")" : std::string("off")) << "\n";

@@ -1,5 +1,6 @@
 // Jensen's two-pass photon mapping (`photon`), and the global map viewed directly (`photon-direct`).
 #pragma once
+#include <chrono>
 #include "photon/density.h"
 #include "photon/photon_map.h"
 #include "trace/integrator.h"
@@ -64,7 +65,13 @@ struct SampleCountPilot {
   double c_direct = 0, c_gather = 0, c_glossy = 0;
   double c_maps = 0;      // a pixel's share of a photon pass
   double photon_scale = 1;  // the photons per pass scaled by this (when not given)
-  double error = 0;         // the variance times the work per sample the choice promises
+  // The progressive radii's bias (measured when the photons are chosen and the render's length
+  // is known): the relMSE-weighted squared bias of one pass's image at the first radii, from
+  // estimates at two radii with the same samples; how the maps' variance grows as the radii
+  // shrink (v_maps scales as (r^2)^-maps_growth); the passes the choice expects.
+  bool measured_bias = false;
+  double bias2 = 0, maps_growth = 0, horizon_passes = 0;
+  double error = 0;  // the error at equal time the choice promises, times the work per sample
   // Whether caustic_threshold 0 was measured too (choose_sample_counts).
   bool compared_caustic_threshold = false;
 };
@@ -79,6 +86,13 @@ struct SampleCountPart {
   double lo = 1, hi = 64;  // bounds of the count
 };
 std::vector<double> optimal_sample_counts(double v0, double c0, const std::vector<SampleCountPart>& parts);
+
+// Progressive photon mapping's error after `passes` passes, as the pilot models it: each pass
+// has variance v_rest + v_maps (r^2)^-growth / scale and bias b (r^2) / scale, with r^2 the
+// pass's radius2 scale (progressive_radius2_scale) and `scale` the photons per pass's; the image
+// is the passes' mean, so the error is their mean variance / passes + (their mean bias)^2.
+double progressive_error(double v_rest, double v_maps, double growth, double bias2, double scale, double passes,
+                         double alpha);
 
 struct PhotonStats {
   double photon_seconds = 0, build_seconds = 0, irradiance_seconds = 0;  // summed over passes
@@ -132,6 +146,13 @@ class PhotonIntegrator final : public Integrator {
   // One pilot with the settings as they are: measures, sets the counts (and the photons when
   // choose_photons), and gives the error at equal time they promise. False when cancelled.
   bool pilot_and_choose(const Scene& scene, const PreprocessContext& context, bool choose_photons, double& error);
+  // The estimates' photons per disc (k) as `factor` times the settings', and the precomputed
+  // irradiance for them.
+  void set_disc_photons(int factor);
+  // Under a time budget, the render's work per pixel the pilot expects (-1: not yet taken), set
+  // by the first pilot so that a second one is weighed at the same.
+  double horizon_work_ = -1;
+  std::chrono::steady_clock::time_point preprocess_start_;
   // The pilot: kPilotPerPixel camera samples at each pixel of a grid over the image.
   static constexpr int kPilotGrid = 64, kPilotPerPixel = 4;
   // The parts of a camera sample whose counts the pilot chooses: shadow rays at gather points,

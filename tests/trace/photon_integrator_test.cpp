@@ -228,7 +228,8 @@ struct Prepared {
   std::unique_ptr<Integrator> integrator;
   const PhotonIntegrator& photon() const { return dynamic_cast<const PhotonIntegrator&>(*integrator); }
 };
-Prepared prepare_photon(const std::string& scene_text, const std::string& settings_json, int size, int threads) {
+Prepared prepare_photon(const std::string& scene_text, const std::string& settings_json, int size, int threads,
+                        int passes = 0) {
   Prepared p{parse_scene(scene_text, "test.json", "."), nullptr};
   Scene& scene = *p.loaded.scene;
   scene.render.width = scene.render.height = size;
@@ -239,7 +240,9 @@ Prepared prepare_photon(const std::string& scene_text, const std::string& settin
   settings.value = nlohmann::json::parse(settings_json);
   tbb::global_control control(tbb::global_control::max_allowed_parallelism, size_t(threads));
   p.integrator = create_integrator("photon", settings, scene.render);
-  p.integrator->preprocess(scene, {3, true});
+  PreprocessContext context{3, true};
+  context.passes = passes;  // the render's length, when the test gives it
+  p.integrator->preprocess(scene, context);
   return p;
 }
 }  // namespace
@@ -297,6 +300,69 @@ TEST_CASE("photon: the pilot chooses the same counts, and the image is the same,
   const auto r2 = render_text(scene, "photon", "{}", 2, 16, 16, 3, 2);
   CHECK(r1.image.mean().x > 0.01f);
   CHECK(r1.image.pixels == r2.image.pixels);
+}
+
+TEST_CASE("photon: progressive_error sums the passes' variance and bias as a brute-force sum does",
+          "[trace][photon][pilot]") {
+  const double alpha = 2.0 / 3.0;
+  for (const double growth : {0.0, 0.5, 1.0})
+    for (const int n : {1, 2, 7, 130, 1000, 30000}) {
+      double sum = 0, sum_inverse = 0;
+      for (int p = 0; p < n; ++p) {
+        const double s = progressive_radius2_scale(p, alpha);
+        sum += s;
+        sum_inverse += std::pow(s, -growth);
+      }
+      const double v_rest = 0.3, v_maps = 0.02, bias2 = 0.004, scale = 0.7;
+      const double expected = (v_rest + v_maps * sum_inverse / n / scale) / n + bias2 * (sum / n) * (sum / n) / (scale * scale);
+      INFO("passes " << n << ", growth " << growth);
+      CHECK(progressive_error(v_rest, v_maps, growth, bias2, scale, n, alpha) == Approx(expected).epsilon(0.002));
+    }
+  // One pass: the first radii's bias and the variance as measured.
+  CHECK(progressive_error(0.3, 0.02, 1, 0.004, 0.5, 1, alpha) == Approx(0.3 + 0.04 + 0.016));
+}
+
+TEST_CASE("photon: the pilot measures the progressive radii's bias when the render's length is known, none where "
+          "no estimate is read, and gives longer renders more photons per pass",
+          "[trace][photon][pilot]") {
+  // No photon estimate is read on a bare floor under a point light: nothing to measure.
+  const std::string bare = test::floor_scene(R"({"type": "point", "position": [0, 2, 0], "intensity": [5, 5, 5]})");
+  const Prepared none = prepare_photon(bare, "{}", 16, 2, 64);
+  CHECK(none.photon().pilot().measured_bias);
+  CHECK(none.photon().pilot().bias2 == 0);
+  // Not measured without the render's length (nor when the photons are given).
+  CHECK_FALSE(prepare_photon(bare, "{}", 16, 2).photon().pilot().measured_bias);
+  const std::string box = test::read_scene_file("tests/data/tiny.json");
+  CHECK_FALSE(prepare_photon(box, R"({"photons": 20000, "caustic_photons": 20000})", 16, 2, 64).photon().pilot().measured_bias);
+  // The Cornell box's indirect light bends in its corners: the first radii's discs read it
+  // biased. The bias falls with the passes, the variance with the samples: a longer render
+  // takes more photons per pass.
+  const Prepared short_render = prepare_photon(box, "{}", 16, 2, 4), long_render = prepare_photon(box, "{}", 16, 2, 4096);
+  const SampleCountPilot& a = short_render.photon().pilot();
+  const SampleCountPilot& b = long_render.photon().pilot();
+  REQUIRE(a.measured_bias);
+  CHECK(a.bias2 > 0);
+  CHECK(a.bias2 == b.bias2);  // the same pilot
+  CHECK(a.maps_growth >= 0);
+  CHECK(a.maps_growth <= 1);
+  CHECK(a.horizon_passes == 4);
+  CHECK(b.horizon_passes == 4096);
+  INFO("photon scale: " << a.photon_scale << " for 4 passes, " << b.photon_scale << " for 4096");
+  CHECK(b.photon_scale > 2 * a.photon_scale);
+  CHECK(long_render.photon().settings().photons > short_render.photon().settings().photons);
+}
+
+TEST_CASE("photon: the pilot's bias falls as the photons per pass grow", "[trace][photon][pilot]") {
+  // The first pass's photons follow the image's size (photons_for_image): 10000 at 64x64,
+  // 64000 at 400x400, so the discs' area falls 6.4x: the squared bias 6.4x where it grows as
+  // the radius (edges), 41x where as its square (smooth light). Measured: 10.9. The pilot's
+  // grid is 64x64 at either size (the pixels it reads differ, the bias field is the same).
+  const std::string box = test::read_scene_file("tests/data/tiny.json");
+  const Prepared few = prepare_photon(box, "{}", 64, 2, 64), many = prepare_photon(box, "{}", 400, 2, 64);
+  const double ratio = few.photon().pilot().bias2 / many.photon().pilot().bias2;
+  INFO("squared bias " << few.photon().pilot().bias2 << " at 10000 photons, " << many.photon().pilot().bias2 << " at 64000");
+  CHECK(ratio > 6.4 / 1.5);
+  CHECK(ratio < 41.0 * 1.5);
 }
 
 namespace {
