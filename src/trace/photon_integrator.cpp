@@ -464,21 +464,21 @@ std::vector<double> optimal_sample_counts(double v0, double c0, const std::vecto
 }
 
 namespace {
-// The means over passes 0 .. n - 1 of the radius2 scale S(p) and of S(p)^-growth. S(p) is
-// Gamma(p + 1 + alpha) / (Gamma(1 + alpha) Gamma(p + 2)) (progressive_radius2_scale's product),
-// so long horizons are summed in blocks of p / 128 passes at their middle pass's value.
+// The means over passes 0 .. n - 1 of S(p)^bias_exponent and of S(p)^-growth, with S(p) the
+// radius2 scale: Gamma(p + 1 + alpha) / (Gamma(1 + alpha) Gamma(p + 2)) (the product in
+// progressive_radius2_scale), so long horizons are summed in blocks of p / 128 passes at their
+// middle pass's value.
 struct ProgressiveMeans {
-  double scale = 1, inverse = 1;
+  double bias = 1, inverse = 1;
 };
-ProgressiveMeans progressive_means(double passes, double alpha, double growth) {
-  const double n = std::floor(std::clamp(passes, 1.0, 1e9));
+ProgressiveMeans progressive_means(double n, double alpha, double growth, double bias_exponent) {
   const double lg0 = std::lgamma(1.0 + alpha);
   auto log_scale = [&](double p) { return std::lgamma(p + 1.0 + alpha) - lg0 - std::lgamma(p + 2.0); };
   double sum = 0, sum_inverse = 0;
   for (double p = 0; p < n;) {
     const double len = std::min(n - p, std::max(1.0, std::floor(p / 128.0)));
     const double ls = log_scale(p + 0.5 * (len - 1.0));
-    sum += len * std::exp(ls);
+    sum += len * std::exp(bias_exponent * ls);
     sum_inverse += len * std::exp(-growth * ls);
     p += len;
   }
@@ -486,11 +486,11 @@ ProgressiveMeans progressive_means(double passes, double alpha, double growth) {
 }
 }  // namespace
 
-double progressive_error(double v_rest, double v_maps, double growth, double bias2, double scale, double passes,
-                         double alpha) {
+double progressive_error(const ProgressiveModel& m, double scale, double passes, double alpha) {
   const double n = std::floor(std::clamp(passes, 1.0, 1e9));
-  const ProgressiveMeans m = progressive_means(n, alpha, growth);
-  return (v_rest + v_maps * m.inverse / scale) / n + bias2 * m.scale * m.scale / (scale * scale);
+  const ProgressiveMeans mean = progressive_means(n, alpha, m.growth, m.bias_exponent);
+  return (m.v_rest + m.v_maps * mean.inverse / scale) / n +
+         m.bias2 * mean.bias * mean.bias / std::pow(scale, 2.0 * m.bias_exponent);
 }
 
 std::vector<PhotonIntegrator::PilotSample> PhotonIntegrator::pilot_samples(const Scene& scene, uint64_t seed) const {
@@ -573,7 +573,7 @@ bool PhotonIntegrator::pilot_and_choose(const Scene& scene, const PreprocessCont
   // Progressive: the same samples on pass 1's maps and then on pass 0's tell the part of the
   // variance that is the maps' own (a pass's maps are shared by all its pixels' samples, so
   // the spread of one map's samples misses it).
-  std::vector<PilotSample> other, other_wide, samples_wide;
+  std::vector<PilotSample> other, other_mid, other_wide, samples_mid, samples_wide;
   const int passes = stats_.passes;
   float other_scale2 = 1.0f;
   if (settings_.progressive) {
@@ -581,6 +581,8 @@ bool PhotonIntegrator::pilot_and_choose(const Scene& scene, const PreprocessCont
     other = pilot_samples(scene, context.seed);
     other_scale2 = global_est_.radius2_scale;
     if (measure_bias) {
+      set_disc_photons(2);
+      other_mid = pilot_samples(scene, context.seed);
       set_disc_photons(kWide);
       other_wide = pilot_samples(scene, context.seed);
       set_disc_photons(1);
@@ -595,6 +597,8 @@ bool PhotonIntegrator::pilot_and_choose(const Scene& scene, const PreprocessCont
   const std::vector<PilotSample> samples = pilot_samples(scene, context.seed);
   const double samples_seconds = seconds_since(t_samples);
   if (measure_bias) {
+    set_disc_photons(2);
+    samples_mid = pilot_samples(scene, context.seed);
     set_disc_photons(kWide);
     samples_wide = pilot_samples(scene, context.seed);
     set_disc_photons(1);
@@ -611,7 +615,7 @@ bool PhotonIntegrator::pilot_and_choose(const Scene& scene, const PreprocessCont
   SampleCountPilot r;
   r.ran = true;
   r.samples = int(samples.size());
-  double work = 0, part_work[kPilotParts] = {}, v_maps_wide = 0;
+  double work = 0, part_work[kPilotParts] = {}, v_maps_wide = 0, bias_44 = 0, bias_24 = 0;
   const size_t pixels = samples.size() / M;
   const int gx = std::min(scene.camera.width(), kPilotGrid), gy = int(pixels) / gx;
   std::vector<double> neighbours_mean(pixels, 0.0);
@@ -661,21 +665,25 @@ bool PhotonIntegrator::pilot_and_choose(const Scene& scene, const PreprocessCont
     r.v_glossy += weight * v_part[kPilotGlossy];
     r.v_maps += weight * v_maps;
     if (measure_bias) {
-      // Each sample's bias at its pass's first radii, b = (L(s) - L(s / 4)) / (3 s / 4). A
-      // product of b on different maps and different camera samples has expectation the
-      // pixel's bias squared (no noise of either is shared): the mean of all such pairs.
-      double a[M], b[M], sum_a = 0, sum_b = 0, same = 0;
-      for (int j = 0; j < M; ++j) {
-        const size_t i = px * M + size_t(j);
-        a[j] = (samples_wide[i].value - samples[i].value) / (kWide - 1);
-        b[j] = (other_wide[i].value - other[i].value) / ((kWide - 1) * other_scale2);
-        sum_a += a[j], sum_b += b[j], same += a[j] * b[j];
-      }
-      r.bias2 += weight * (sum_a * sum_b - same) / (M * (M - 1));
+      // Each sample's differences with 2 and 4 times the photons per disc, on either map. A
+      // product of two on different maps and different camera samples has no noise of either
+      // in its expectation (the pixel's bias terms' product): the mean of all such pairs.
+      auto cross = [&](const std::vector<PilotSample>& a_wide, const std::vector<PilotSample>& a,
+                       const std::vector<PilotSample>& b_wide, const std::vector<PilotSample>& b) {
+        double sum_a = 0, sum_b = 0, same = 0;
+        for (int j = 0; j < M; ++j) {
+          const size_t i = px * M + size_t(j);
+          const double da = a_wide[i].value - a[i].value, db = b_wide[i].value - b[i].value;
+          sum_a += da, sum_b += db, same += da * db;
+        }
+        return (sum_a * sum_b - same) / (M * (M - 1));
+      };
+      bias_44 += weight * cross(samples_wide, samples, other_wide, other);
+      bias_24 += weight * 0.5 * (cross(samples_mid, samples, other_wide, other) + cross(samples_wide, samples, other_mid, other));
       v_maps_wide += weight * v_wide;
     }
   }
-  for (double* v : {&r.v_pixel, &r.v_direct, &r.v_gather, &r.v_glossy, &r.v_maps, &r.bias2, &v_maps_wide})
+  for (double* v : {&r.v_pixel, &r.v_direct, &r.v_gather, &r.v_glossy, &r.v_maps, &v_maps_wide, &bias_44, &bias_24})
     *v /= double(pixels);
   r.v_maps = std::max(r.v_maps, 0.0);
   const double n = double(samples.size());
@@ -688,7 +696,13 @@ bool PhotonIntegrator::pilot_and_choose(const Scene& scene, const PreprocessCont
   r.c_maps = settings_.progressive ? photon_pass_cost_ / (double(w) * double(h)) : 0.0;
   if (measure_bias) {
     r.measured_bias = true;
-    r.bias2 = std::max(r.bias2, 0.0);
+    // With the bias b (k / k1)^e at k photons a disc (k1 the settings'), the two products
+    // are b^2 (4^e - 1)^2 and b^2 (2^e - 1)(4^e - 1): their ratio is 2^e + 1. e = 1 where the
+    // light bends smoothly (bias as r^2), 1/2 at its edges (as r); taken within those.
+    r.bias_exponent = bias_44 > 0 && bias_24 > 0 ? std::clamp(std::log2(std::max(bias_44 / bias_24 - 1.0, 1e-9)), 0.5, 1.0) : 1.0;
+    // Pass 1's maps are read at its radii, other_scale2 of pass 0's.
+    const double spread = std::pow(double(kWide), r.bias_exponent) - 1.0;
+    r.bias2 = std::max(bias_44, 0.0) / (spread * spread * std::pow(double(other_scale2), r.bias_exponent));
     // The maps' variance at the discs' area against at kWide times it.
     r.maps_growth = r.v_maps > 0 && v_maps_wide > 0 ? std::clamp(std::log(r.v_maps / v_maps_wide) / std::log(double(kWide)), 0.0, 1.0) : 0.0;
   }
@@ -713,8 +727,9 @@ bool PhotonIntegrator::pilot_and_choose(const Scene& scene, const PreprocessCont
   // and cost both scale with the photons per pass).
   // The maps' variance in one pass's sample, averaged over the passes (it grows as the radii
   // shrink), with the photons scaled by x.
-  auto v_maps_per_sample = [&](const SampleCountPilot& p, double x, double passes) {
-    return progressive_error(0, p.v_maps, p.maps_growth, 0, x, passes, settings_.alpha) * std::floor(std::max(passes, 1.0));
+  auto v_maps_per_sample = [&](double x, double passes) {
+    const ProgressiveModel maps{0, r.v_maps, r.maps_growth, 0, 1};
+    return progressive_error(maps, x, passes, settings_.alpha) * std::floor(std::max(passes, 1.0));
   };
   auto per_sample = [&](const std::vector<double>& chosen, double x, double& ve, double& ce) {
     ve = v0, ce = c0 + (choose_photons ? r.c_maps * x : 0.0);
@@ -750,12 +765,12 @@ bool PhotonIntegrator::pilot_and_choose(const Scene& scene, const PreprocessCont
       std::vector<double> ci;
       double vi = 0, cw = 0;
       for (int it = 0; it < (timed ? 4 : 1); ++it) {
-        const double grown = v_maps_per_sample(r, xi, passes_i);
+        const double grown = v_maps_per_sample(xi, passes_i);
         ci = optimal_sample_counts(v0 + grown, c0 + r.c_maps * xi, parts);
         per_sample(ci, xi, vi, cw);
         if (timed) passes_i = std::max(1.0, horizon_work_ / cw);
       }
-      const double e = progressive_error(vi, r.v_maps, r.maps_growth, r.bias2, xi, passes_i, settings_.alpha);
+      const double e = progressive_error({vi, r.v_maps, r.maps_growth, r.bias2, r.bias_exponent}, xi, passes_i, settings_.alpha);
       const double score = timed ? e : e * cw;
       if (score < best) best = score, x = xi, chosen = ci, r.horizon_passes = passes_i;
     }
@@ -765,6 +780,7 @@ bool PhotonIntegrator::pilot_and_choose(const Scene& scene, const PreprocessCont
   for (int i = 0, next = 0; i < 3; ++i)
     if (!given[i]) *counts[i] = int(std::lround(chosen[size_t(next++)]));
   r.error = error;
+  r.seconds_per_work = work > 0 ? samples_seconds / work : 0.0;
   pilot_ = r;
   if (choose_photons) {
     pilot_.photon_scale = x;
@@ -800,7 +816,8 @@ std::string PhotonIntegrator::describe() const {
         << pilot_.error << "\n";
     if (pilot_.measured_bias)
       s << "pilot, the progressive radii's bias: squared at the first radii " << pilot_.bias2
-        << " (relMSE-weighted), the maps' variance as (r^2)^-" << pilot_.maps_growth << ", for "
+        << " (relMSE-weighted), growing as (r^2)^" << pilot_.bias_exponent << "; the maps' variance as (r^2)^-"
+        << pilot_.maps_growth << "; for "
         << std::lround(pilot_.horizon_passes) << " passes expected\n";
     if (pilot_.compared_caustic_threshold)
       s << "caustic threshold: " << settings_.caustic_threshold << " (the pilot's choice of it and 0)\n";

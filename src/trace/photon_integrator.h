@@ -67,11 +67,13 @@ struct SampleCountPilot {
   double photon_scale = 1;  // the photons per pass scaled by this (when not given)
   // The progressive radii's bias (measured when the photons are chosen and the render's length
   // is known): the relMSE-weighted squared bias of one pass's image at the first radii, from
-  // estimates at two radii with the same samples; how the maps' variance grows as the radii
+  // estimates at three disc sizes with the same samples, and how it grows with the disc's
+  // area (as (r^2)^bias_exponent, within 1/2 and 1); how the maps' variance grows as the radii
   // shrink (v_maps scales as (r^2)^-maps_growth); the passes the choice expects.
   bool measured_bias = false;
-  double bias2 = 0, maps_growth = 0, horizon_passes = 0;
+  double bias2 = 0, bias_exponent = 1, maps_growth = 0, horizon_passes = 0;
   double error = 0;  // the error at equal time the choice promises, times the work per sample
+  double seconds_per_work = 0;  // the pilot samples' time over their work (all threads)
   // Whether caustic_threshold 0 was measured too (choose_sample_counts).
   bool compared_caustic_threshold = false;
 };
@@ -88,11 +90,14 @@ struct SampleCountPart {
 std::vector<double> optimal_sample_counts(double v0, double c0, const std::vector<SampleCountPart>& parts);
 
 // Progressive photon mapping's error after `passes` passes, as the pilot models it: each pass
-// has variance v_rest + v_maps (r^2)^-growth / scale and bias b (r^2) / scale, with r^2 the
-// pass's radius2 scale (progressive_radius2_scale) and `scale` the photons per pass's; the image
-// is the passes' mean, so the error is their mean variance / passes + (their mean bias)^2.
-double progressive_error(double v_rest, double v_maps, double growth, double bias2, double scale, double passes,
-                         double alpha);
+// has variance v_rest + v_maps S^-growth / scale and bias b (S / scale)^bias_exponent (bias2 =
+// b^2), with S the pass's radius2 scale (progressive_radius2_scale) and `scale` the photons per
+// pass's (the discs' area falls as 1 / scale); the image is the passes' mean, so the error is
+// their mean variance / passes + (their mean bias)^2.
+struct ProgressiveModel {
+  double v_rest = 0, v_maps = 0, growth = 0, bias2 = 0, bias_exponent = 1;
+};
+double progressive_error(const ProgressiveModel& model, double scale, double passes, double alpha);
 
 struct PhotonStats {
   double photon_seconds = 0, build_seconds = 0, irradiance_seconds = 0;  // summed over passes
