@@ -2,17 +2,30 @@
 #include "photon/density.h"
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include "core/rng.h"
 
 namespace caustica {
 
 namespace {
+// The precomputed irradiance's sites: a 1 / stride share of the global map's photons, chosen by
+// a hash of their index (independently of where they lie).
+bool is_site(uint32_t index, size_t stride) { return hash_seed(index, 0x73697465) % stride == 0; }  // "site"
+
+struct SiteMoments {
+  Vec3 offset_sum{0.0f};
+  float flux = 0, r2_disc = 0;
+};
+
 // Shared by both estimates: gathers, filters and sums weight(photon) * power / area.
 // With levels > 0, level_sums[l] also receives the estimate of the narrower bounce window
-// min_bounces..max_bounces - l, for l < levels (level 0 is the returned estimate).
+// min_bounces..max_bounces - l, for l < levels (level 0 is the returned estimate). `map`
+// holds `share` of the photons (the precomputed irradiance's estimates leave out its sites),
+// so the estimate is scaled by 1 / share. `moments` receives the luminance of the photons
+// over the whole (unshrunk) disc and their luminance-weighted offsets from p.
 template <class Weight>
 Color gather(const PhotonMap& map, const Vec3& p, const Vec3& n_side, const EstimateSettings& s,
              std::vector<Neighbour>& scratch, EstimateInfo* info, Weight weight_of, Color* level_sums = nullptr,
-             int levels = 0) {
+             int levels = 0, float share = 1.0f, SiteMoments* moments = nullptr) {
   for (int l = 0; l < levels; ++l) level_sums[l] = Color(0.0f);
   const size_t found = s.fixed_radius ? map.radius_query(p, s.max_radius, scratch)
                                       : map.knn(p, s.k, s.max_radius, scratch);
@@ -30,14 +43,21 @@ Color gather(const PhotonMap& map, const Vec3& p, const Vec3& n_side, const Esti
   // A disc through the k-th nearest photon holds k - 1 photons inside it: counting the k-th as
   // well reads k / (k - 1) too high (11 % at k = 10, 2 % at k = 50). (k = 1 keeps its photon.)
   const size_t counted = !s.fixed_radius && found == s.k && s.k > 1 ? found - 1 : found;
+  if (moments) *moments = SiteMoments{Vec3(0.0f), 0.0f, r2_disc};
   for (size_t i = 0; i < counted; ++i) {
     const Neighbour& nb = scratch[i];
-    if (shrunk && nb.dist2 >= r2) continue;
+    const bool outside = shrunk && nb.dist2 >= r2;
+    if (outside && !moments) continue;
     const Photon& ph = map[nb.index];
     if (int(ph.bounces) < s.min_bounces || int(ph.bounces) > s.max_bounces) continue;
     const Vec3 wi = ph.incoming_dir();
     if (glm::dot(wi, n_side) <= 0.0f || !normals_agree(ph.surface_normal(), n_side)) continue;
     Color c = map.power(nb.index) * weight_of(wi);
+    if (moments) {  // over the whole (unshrunk) disc
+      moments->offset_sum += luminance(c) * (ph.position - p);
+      moments->flux += luminance(c);
+    }
+    if (outside) continue;
     if (s.cone_filter) c *= 1.0f - std::sqrt(nb.dist2) / (s.cone_k * r);
     sum += c;
     ++used;
@@ -45,6 +65,7 @@ Color gather(const PhotonMap& map, const Vec3& p, const Vec3& n_side, const Esti
   }
   float area = kPi * r2;
   if (s.cone_filter) area *= 1.0f - 2.0f / (3.0f * s.cone_k);
+  area *= share;
   if (info) *info = EstimateInfo{used, r, found};
   for (int l = 1; l < levels; ++l) level_sums[l] /= area;
   if (levels > 0) level_sums[0] = sum / area;
@@ -75,16 +96,43 @@ double progressive_radius2_scale(int pass, double alpha) {
 void IrradianceCache::build(const PhotonMap& global, size_t stride, const EstimateSettings& s, int levels) {
   settings_ = s;
   levels_ = std::max(1, levels);
-  stride = std::max<size_t>(1, stride);
-  const size_t n = (global.size() + stride - 1) / stride;
+  // The sites, and the other photons, which estimate the irradiance at them: a site's own
+  // photon would count at the centre of its disc however far progressive passes shrink it,
+  // and a photon-placed site could not be told from the photons it is nearest to (a lookup's
+  // nearest site lies where sites, and so photons, are sparse). Chosen by a hash of the index,
+  // the sites are independent of the others: the cache reads a uniform density without bias
+  // at any disc size (tests/photon/density_test.cpp).
+  stride = std::max<size_t>(2, stride);
+  std::vector<uint32_t> sites;
+  std::vector<Photon> rest;
+  rest.reserve(global.size() - global.size() / stride);
+  for (uint32_t i = 0; i < uint32_t(global.size()); ++i) {
+    if (is_site(i, stride)) sites.push_back(i);
+    else rest.push_back(global[i]);
+  }
+  const size_t n = sites.size();
+  const float share = float(rest.size()) / float(std::max<size_t>(global.size(), 1));
+  PhotonMap others;
+  others.build(std::move(rest), global.flux_scale());
   const size_t L = size_t(levels_);
   std::vector<Color> irradiance(n * L);
+  std::vector<Vec3> gradient(n);
   tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 256), [&](const tbb::blocked_range<size_t>& range) {
     std::vector<Neighbour> scratch;
     for (size_t i = range.begin(); i != range.end(); ++i) {
-      const Photon& ph = global[uint32_t(i * stride)];
-      gather(global, ph.position, ph.surface_normal(), s, scratch, nullptr, [](const Vec3&) { return Color(1.0f); },
-             &irradiance[i * L], levels_);
+      const Photon& ph = global[sites[i]];
+      const Vec3 normal = ph.surface_normal();
+      SiteMoments m;
+      gather(others, ph.position, normal, s, scratch, nullptr, [](const Vec3&) { return Color(1.0f); },
+             &irradiance[i * L], levels_, share, &m);
+      // The irradiance's gradient over itself, in the surface's plane, from the whole disc
+      // (however far a progressive pass shrinks the estimate's): for a density rho + g.v over
+      // a disc of radius r, the photons' offsets v sum to g pi r^4 / 4 (and rho pi r^2), so
+      // g / rho is 4 / r^2 times their flux-weighted mean offset.
+      if (m.flux > 0 && m.r2_disc > 0) {
+        const Vec3 g = 4.0f * m.offset_sum / (m.flux * m.r2_disc);
+        gradient[i] = g - glm::dot(g, normal) * normal;
+      }
     }
   });
   double mean = 0;
@@ -93,7 +141,7 @@ void IrradianceCache::build(const PhotonMap& global, size_t stride, const Estima
   if (!(mean > 0)) mean = 1.0;
   std::vector<Photon> points(n);
   for (size_t i = 0; i < n; ++i) {
-    const Photon& ph = global[uint32_t(i * stride)];
+    const Photon& ph = global[sites[i]];
     const Vec3 normal = ph.surface_normal();
     points[i] = Photon::make(ph.position, irradiance[i * L] / float(mean), normal, normal, 0);
   }
@@ -105,6 +153,8 @@ void IrradianceCache::build(const PhotonMap& global, size_t stride, const Estima
     normals[i] = points_[uint32_t(i)].surface_normal();
   }
   grid_.build(positions, normals);
+  gradient_.resize(n);
+  for (size_t i = 0; i < n; ++i) gradient_[i] = gradient[size_t(order[i])];
   // The narrower windows' irradiance, in the map's (Morton) order.
   narrower_.assign(n * (L - 1), Color(0.0f));
   for (size_t i = 0; i < n; ++i) {
@@ -122,7 +172,7 @@ bool IrradianceCache::lookup(const Vec3& p, const Vec3& n_side, float max_radius
   // Approximate nearest (within twice the distance) is as good here and cheaper.
   const int64_t g = grid_.nearest(p, max_radius, [&](const Vec3& n) { return normals_agree(n, n_side); });
   if (g >= 0) {
-    E = value(size_t(g), level);
+    E = corrected(size_t(g), p, level);
     return true;
   }
   if (g == PointGrid::kNone) return false;
@@ -131,7 +181,7 @@ bool IrradianceCache::lookup(const Vec3& p, const Vec3& n_side, float max_radius
     points_.knn(p, k, max_radius, scratch, 1.0f);
     for (const Neighbour& nb : scratch) {
       if (normals_agree(points_[nb.index].surface_normal(), n_side)) {
-        E = value(nb.index, level);
+        E = corrected(nb.index, p, level);
         return true;
       }
     }

@@ -52,21 +52,13 @@ Color radiance_estimate(const PhotonMap& map, const SurfaceHit& hit, const Vec3&
 Color irradiance_estimate(const PhotonMap& map, const Vec3& p, const Vec3& n_side, const EstimateSettings& s,
                           std::vector<Neighbour>& scratch, EstimateInfo* info = nullptr);
 
-// Irradiance precomputed at every stride-th photon of the global map (Christensen 1999).
-// Lookups read the nearest precomputed point whose normal agrees, instead of a k-NN estimate.
+// Irradiance precomputed at a 1 / stride share of the global map's photons (Christensen 1999),
+// each estimated from the other photons (build). Lookups read the nearest precomputed point
+// whose normal agrees, carried to the lookup's point along the irradiance's gradient there,
+// instead of a k-NN estimate: unbiased on a uniform density at any progressive disc size, and
+// in a gradient (tests/photon/density_test.cpp).
 class IrradianceCache {
  public:
-  // Whether points built with estimate settings s read the irradiance without bias: a point
-  // counts the photon at its centre, which stays in its disc however far progressive passes
-  // shrink the disc, while a lookup's nearest point tends to lie where photons are sparse. The
-  // two cancel at full radius and part ways as the disc empties: on a uniform density the
-  // cache reads 1.006 of it at k = 50 and radius2_scale 0.2, 1.046 at 0.1, 1.27 at k = 10 and
-  // 0.2. Usable while (k - 1) radius2_scale, the photons the shrunk disc holds on average, is
-  // at least kMinPhotonsInDisc (tests/photon/density_test.cpp); past that the full estimate.
-  static constexpr double kMinPhotonsInDisc = 9.0;
-  static bool unbiased_for(const EstimateSettings& s) {
-    return s.fixed_radius || double(s.k - 1) * double(std::min(s.radius2_scale, 1.0f)) >= kMinPhotonsInDisc;
-  }
   // The points' irradiance counts the photons s admits (its bounce window included), and, for
   // levels l = 1 .. levels - 1, the photons of the narrower window min_bounces .. max_bounces - l
   // (the gathers from deeper eye vertices): one k-NN search per point serves them all.
@@ -78,7 +70,7 @@ class IrradianceCache {
               std::vector<Neighbour>& scratch) const;
   size_t size() const { return points_.size(); }
   size_t memory_bytes() const {
-    return points_.memory_bytes() + grid_.memory_bytes() + narrower_.capacity() * sizeof(Color);
+    return points_.memory_bytes() + grid_.memory_bytes() + narrower_.capacity() * sizeof(Color) + gradient_.capacity() * sizeof(Vec3);
   }
   // The kd-tree answers what the grid leaves undecided. Its lookups are 1-NN: small leaves
   // beat the photon maps' 32 here (bench: BM_FinalGather).
@@ -88,6 +80,13 @@ class IrradianceCache {
   Color value(size_t i, int level) const {
     return level == 0 ? points_.power(uint32_t(i)) : narrower_[i * size_t(levels_ - 1) + size_t(level - 1)];
   }
+  // Point i's irradiance carried to p along its gradient (the nearest point tends to lie on
+  // the bright side of a gradient: points are photons, denser where the light is).
+  Color corrected(size_t i, const Vec3& p, int level) const {
+    const float f = 1.0f + glm::dot(gradient_[i], p - points_[uint32_t(i)].position);
+    return value(i, level) * std::clamp(f, 0.0f, 3.0f);
+  }
+  std::vector<Vec3> gradient_;  // of the irradiance over itself, per point, in points_'s order
   PhotonMap points_;  // records reused: power = irradiance, normal = surface normal
   PointGrid grid_;    // the same points, by index: most lookups end here
   std::vector<Color> narrower_;  // levels - 1 per point, in points_'s order

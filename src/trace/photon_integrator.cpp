@@ -181,8 +181,6 @@ void PhotonIntegrator::set_disc_photons(int factor) {
 void PhotonIntegrator::build_irradiance() {
   irradiance_ = IrradianceCache{};  // never a previous pass's
   if (!final_gather_ || settings_.irradiance_stride <= 0 || global_.empty()) return;
-  // (Late progressive passes: the full estimate, once the cache would read too bright.)
-  if (!IrradianceCache::unbiased_for(at_depth(global_est_, 1))) return;
   const auto t0 = std::chrono::steady_clock::now();
   // For the gathers' points at eye vertices 1 .. 8 (gathers from eye vertices 0 .. 7).
   irradiance_.build(global_, size_t(settings_.irradiance_stride), at_depth(global_est_, 1), 8);
@@ -821,7 +819,7 @@ std::string PhotonIntegrator::describe() const {
         << std::lround(pilot_.horizon_passes) << " passes expected\n";
     if (pilot_.compared_caustic_threshold)
       s << "caustic threshold: " << settings_.caustic_threshold << " (the pilot's choice of it and 0)\n";
-    s << "precomputed irradiance: " << (settings_.irradiance_stride > 0 ? "every " + std::to_string(settings_.irradiance_stride) + "th global photon (" + std::to_string(irradiance_.size()) + " points" + (irradiance_.size() == 0 && !global_.empty() ? ": the last passes' discs were too small for it, full estimates" : "") + ")" : std::string("off")) << "\n";
+    s << "precomputed irradiance: " << (settings_.irradiance_stride > 0 ? "1 in " + std::to_string(std::max(2, settings_.irradiance_stride)) + " global photons (" + std::to_string(irradiance_.size()) + " points)" : std::string("off")) << "\n";
   }
   if (settings_.progressive) {
     s << "progressive: " << stats_.passes << " photon passes (maps above: the last; and " << stats_.pilot_passes
