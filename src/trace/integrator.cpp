@@ -39,7 +39,7 @@ const std::vector<IntegratorSetting>& integrator_settings() {
       {"gather_rays", SettingKind::Integer, "Final-gather rays per first diffuse hit"},
       {"direct_samples", SettingKind::Integer, "Shadow-ray samples per first diffuse hit"},
       {"glossy_direct_samples", SettingKind::Integer, "Shadow-ray samples per glossy surface a camera path passes"},
-      {"irradiance_stride", SettingKind::Integer, "Precompute irradiance at every n-th global photon (0: off)"},
+      {"irradiance_stride", SettingKind::Integer, "Precompute irradiance at 1 in n global photons (0: off)"},
       {"glossy_threshold", SettingKind::Real, "Store photons and gather on glossy lobes at least this rough (alpha)"},
       {"caustic_threshold", SettingKind::Real,
        "Caustic photons pass delta surfaces and glossy ones smoother than this (alpha); rougher ones are final-gathered"},

@@ -33,7 +33,7 @@ struct PhotonSettings : MonteCarloSettings {
   // by a pilot before the render (PhotonIntegrator::choose_sample_counts).
   bool gather_rays_given = true, direct_samples_given = true, glossy_direct_samples_given = true;
   bool caustic_threshold_given = true;  // the pilot may choose 0 when not given
-  int irradiance_stride = 4; // precompute irradiance at every n-th global photon; 0: off
+  int irradiance_stride = 4; // precompute irradiance at 1 in n global photons (IrradianceCache); 0: off
   // Photons are stored, and eye paths stop to gather, on a diffuse lobe or a glossy lobe at
   // least this rough (microfacet alpha); smoother glossy surfaces are traced through.
   float glossy_threshold = 0.3f;

@@ -208,7 +208,7 @@ TEST_CASE("density: a k-NN estimate of a uniform photon density is unbiased", "[
 
 namespace {
 // The mean over `maps` maps of `photons` photons of flux 1, placed on [-1, 1]^2 by place(rng),
-// of the precomputed irradiance (every 4th photon a site, as the photon integrator builds it)
+// of the precomputed irradiance (1 in 4 photons a site, as the photon integrator builds it)
 // read at `points`, each over `density` there; and the standard error of that mean, from the
 // spread of the maps' means.
 template <class Place, class Density>
