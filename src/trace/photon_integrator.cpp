@@ -572,19 +572,21 @@ bool PhotonIntegrator::pilot_and_choose(const Scene& scene, const PreprocessCont
   // variance that is the maps' own (a pass's maps are shared by all its pixels' samples, so
   // the spread of one map's samples misses it).
   std::vector<PilotSample> other, other_mid, other_wide, samples_mid, samples_wide;
+  // The same samples on the current maps with 2 and kWide times the photons per disc.
+  auto wider_discs = [&](std::vector<PilotSample>& mid, std::vector<PilotSample>& wide) {
+    set_disc_photons(2);
+    mid = pilot_samples(scene, context.seed);
+    set_disc_photons(kWide);
+    wide = pilot_samples(scene, context.seed);
+    set_disc_photons(1);
+  };
   const int passes = stats_.passes;
   float other_scale2 = 1.0f;
   if (settings_.progressive) {
     if (!begin_pass(scene, 1, context)) return false;
     other = pilot_samples(scene, context.seed);
     other_scale2 = global_est_.radius2_scale;
-    if (measure_bias) {
-      set_disc_photons(2);
-      other_mid = pilot_samples(scene, context.seed);
-      set_disc_photons(kWide);
-      other_wide = pilot_samples(scene, context.seed);
-      set_disc_photons(1);
-    }
+    if (measure_bias) wider_discs(other_mid, other_wide);
     if (!begin_pass(scene, 0, context)) return false;
     // The pilot's photon passes are its own (pass 0's maps serve the render if their counts
     // stay: preprocess).
@@ -594,13 +596,7 @@ bool PhotonIntegrator::pilot_and_choose(const Scene& scene, const PreprocessCont
   const auto t_samples = std::chrono::steady_clock::now();
   const std::vector<PilotSample> samples = pilot_samples(scene, context.seed);
   const double samples_seconds = seconds_since(t_samples);
-  if (measure_bias) {
-    set_disc_photons(2);
-    samples_mid = pilot_samples(scene, context.seed);
-    set_disc_photons(kWide);
-    samples_wide = pilot_samples(scene, context.seed);
-    set_disc_photons(1);
-  }
+  if (measure_bias) wider_discs(samples_mid, samples_wide);
   if (context.cancel && context.cancel->load()) return false;
   auto sample_variance = [](const double* v, int n) {
     double mean = 0, ss = 0;
