@@ -18,7 +18,7 @@ const std::vector<IntegratorPlugin>& integrator_plugins() {
       {"photon", PhotonIntegrator::create,
        {"photons", "caustic_photons", "global_k", "caustic_k", "global_radius", "caustic_radius", "gather_rays",
         "direct_samples", "glossy_direct_samples", "irradiance_stride", "glossy_threshold", "caustic_threshold", "hide_emitters", "progressive",
-        "alpha"}},
+        "alpha", "path_fallback"}},
       {"photon-direct", PhotonIntegrator::create_direct,
        {"photons", "caustic_photons", "global_k", "caustic_k", "global_radius", "caustic_radius", "glossy_threshold",
         "hide_emitters", "progressive", "alpha"}},
@@ -46,6 +46,8 @@ const std::vector<IntegratorSetting>& integrator_settings() {
       {"alpha", SettingKind::Real, "Progressive photon mapping and sppm: radius reduction, in (0, 1) (default 2/3)"},
       {"radius", SettingKind::Real, "First radius of every pixel (scene units)"},
       {"progressive", SettingKind::Boolean, "Fresh photon maps every pass, radii shrinking (consistent)"},
+      {"path_fallback", SettingKind::Boolean,
+       "Under a time budget, path trace the image where the pilot predicts path tracing's error below 1/1.5 of ours and no caustic photons are stored (default true)"},
       {"rr_depth", SettingKind::Integer, "Russian roulette starts after this many bounces"},
       {"hide_emitters", SettingKind::Boolean, "Directly visible emitters and the environment render black"},
   };

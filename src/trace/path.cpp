@@ -12,7 +12,11 @@ std::unique_ptr<Integrator> PathIntegrator::create(const Params& p, const Render
 }
 
 Color PathIntegrator::Li(const Ray& camera_ray, const Scene& scene, Sampler& sampler) const {
-  EyePath path{Color(0.0f), Color(1.0f), BsdfVertex{}, settings_.max_depth, settings_.hide_emitters};
+  return trace_path(camera_ray, scene, sampler, settings_);
+}
+
+Color trace_path(const Ray& camera_ray, const Scene& scene, Sampler& sampler, const MonteCarloSettings& settings) {
+  EyePath path{Color(0.0f), Color(1.0f), BsdfVertex{}, settings.max_depth, settings.hide_emitters};
   Ray ray = camera_ray;
   for (int depth = 0;; ++depth) {
     SurfaceHit hit;
@@ -22,7 +26,7 @@ Color PathIntegrator::Li(const Ray& camera_ray, const Scene& scene, Sampler& sam
     // it reaches (on the last vertex too: see EyePath::meet).
     if (!hit.material->is_specular()) path.L += path.beta * estimate_direct(scene, hit, wo, sampler, 1.0f);
     if (!path.scatter(hit, wo, sampler, ray)) break;
-    if (depth + 1 >= settings_.rr_depth) {
+    if (depth + 1 >= settings.rr_depth) {
       const float survive = std::min(1.0f, max_component(path.beta));
       if (survive <= 0.0f || sampler.next1d() >= survive) break;
       path.beta /= survive;

@@ -7,6 +7,10 @@ namespace caustica {
 // max_depth, rr_depth and hide_emitters: nothing of its own.
 using PathSettings = MonteCarloSettings;
 
+// One path tracer's sample along a camera ray (PathIntegrator::Li; the photon integrator's
+// pilot weighs it against its own samples, and renders with it where it is the better).
+Color trace_path(const Ray& camera_ray, const Scene& scene, Sampler& sampler, const MonteCarloSettings& settings);
+
 class PathIntegrator final : public Integrator {
  public:
   explicit PathIntegrator(const PathSettings& settings) : settings_(settings) {}

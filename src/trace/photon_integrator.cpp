@@ -13,6 +13,7 @@
 #include "photon/gather.h"
 #include "photon/photon_tracer.h"
 #include "trace/eye_path.h"
+#include "trace/path.h"
 
 namespace caustica {
 namespace {
@@ -56,6 +57,46 @@ Color counted_estimate(const PhotonMap& map, const SurfaceHit& hit, const Vec3& 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
+
+// The unbiased sample variance of n values.
+double sample_variance(const double* v, int n) {
+  double mean = 0, ss = 0;
+  for (int i = 0; i < n; ++i) mean += v[i];
+  mean /= n;
+  for (int i = 0; i < n; ++i) ss += (v[i] - mean) * (v[i] - mean);
+  return ss / (n - 1);
+}
+
+// Each pilot pixel's weight as the relMSE weighs its error, 1 / (reference^2 + 0.01), with the
+// mean of the neighbouring pilot pixels' samples for the reference (values: m per pixel of a
+// gx x gy grid, row by row): the pixel's own would let its outliers shrink its weight, and
+// their variance with it. Sums in pixel order: the same for any thread count.
+std::vector<double> pilot_weights(const std::vector<double>& values, int gx, int gy, int m) {
+  std::vector<double> weights(size_t(gx) * size_t(gy));
+  for (int y = 0; y < gy; ++y)
+    for (int x = 0; x < gx; ++x) {
+      double sum = 0;
+      int count = 0;
+      for (int ny = std::max(0, y - 1); ny <= std::min(gy - 1, y + 1); ++ny)
+        for (int nx = std::max(0, x - 1); nx <= std::min(gx - 1, x + 1); ++nx) {
+          if (nx == x && ny == y) continue;
+          for (int j = 0; j < m; ++j) sum += values[(size_t(ny) * size_t(gx) + size_t(nx)) * size_t(m) + size_t(j)];
+          count += m;
+        }
+      const double mean = count > 0 ? sum / count : 0.0;
+      weights[size_t(y) * size_t(gx) + size_t(x)] = 1.0 / (mean * mean + 0.01);
+    }
+  return weights;
+}
+// The pilot's camera ray through pixel cell of a gx x gy grid over the image (the pixel at the
+// cell's centre), jittered with the sampler's first numbers.
+Ray pilot_ray(const Scene& scene, int cell, int gx, int gy, Sampler& sampler) {
+  const int w = scene.camera.width(), h = scene.camera.height();
+  const int x = ((cell % gx) * w + w / 2) / gx, y = ((cell / gx) * h + h / 2) / gy;
+  const Vec2 jitter = sampler.next2d();
+  return scene.camera.has_lens() ? scene.camera.generate_ray(x, y, jitter, sampler.next2d())
+                                 : scene.camera.generate_ray(x, y, jitter);
+}
 }  // namespace
 
 PhotonSettings PhotonSettings::read(const Params& p, const RenderSettings& render, bool final_gather) {
@@ -89,6 +130,7 @@ PhotonSettings PhotonSettings::read(const Params& p, const RenderSettings& rende
   number("glossy_threshold", s.glossy_threshold);
   number("caustic_threshold", s.caustic_threshold);
   s.alpha = float(p.number_in("alpha", s.alpha, 1e-3, 0.999));
+  s.path_fallback = final_gather && p.boolean("path_fallback", true);
   return s;
 }
 
@@ -108,6 +150,7 @@ std::unique_ptr<Integrator> PhotonIntegrator::create_direct(const Params& p, con
 void PhotonIntegrator::preprocess(const Scene& scene, const PreprocessContext& context) {
   preprocess_start_ = std::chrono::steady_clock::now();
   horizon_work_ = -1;
+  horizon_seconds_ = 0;
   const size_t for_image = PhotonSettings::photons_for_image(scene.camera.width(), scene.camera.height());
   if (settings_.photons_from_image) settings_.photons = for_image;
   if (settings_.caustic_photons_from_image) settings_.caustic_photons = for_image;
@@ -155,7 +198,7 @@ void PhotonIntegrator::preprocess(const Scene& scene, const PreprocessContext& c
 }
 
 bool PhotonIntegrator::begin_pass(const Scene& scene, int pass, const PreprocessContext& context) {
-  if (!settings_.progressive || pass == built_pass_) return true;
+  if (!settings_.progressive || pass == built_pass_ || pilot_.path_mode) return true;
   // Each estimate's disc (the k nearest photons', at most the first radii) shrinks by the
   // schedule: per pass the same adaptive disc as without progression, scaled.
   const float scale2 = float(progressive_radius2_scale(pass, settings_.alpha));
@@ -352,6 +395,7 @@ void PhotonIntegrator::record_aov(const SurfaceHit& hit, const Vec3& wo, float* 
 }
 
 Color PhotonIntegrator::Li(const Ray& camera_ray, const Scene& scene, Sampler& sampler) const {
+  if (pilot_.path_mode) return trace_path(camera_ray, scene, sampler, settings_);
   return trace_eye(camera_ray, scene, sampler, 0, kSplitLevels);
 }
 
@@ -497,13 +541,9 @@ std::vector<PhotonIntegrator::PilotSample> PhotonIntegrator::pilot_samples(const
   std::vector<PilotSample> out(size_t(gx) * size_t(gy) * kPilotPerPixel);
   const uint64_t pilot_seed = hash_seed(seed, 0x70696c6f74, 0);  // "pilot"
   tbb::parallel_for(0, gx * gy, [&](int cell) {
-    // The pixel at the centre of its cell of a gx x gy grid over the image.
-    const int x = ((cell % gx) * w + w / 2) / gx, y = ((cell / gx) * h + h / 2) / gy;
     for (int j = 0; j < kPilotPerPixel; ++j) {
       Sampler sampler(hash_seed(uint64_t(cell), uint64_t(j), pilot_seed));
-      const Vec2 jitter = sampler.next2d();
-      const Ray ray = scene.camera.has_lens() ? scene.camera.generate_ray(x, y, jitter, sampler.next2d())
-                                              : scene.camera.generate_ray(x, y, jitter);
+      const Ray ray = pilot_ray(scene, cell, gx, gy, sampler);
       Probe probe;
       const WorkSnapshot work0 = work_snapshot(sampler);
       const double v = double(luminance(trace_eye(ray, scene, sampler, 0, kSplitLevels, &probe)));
@@ -553,7 +593,44 @@ bool PhotonIntegrator::choose_sample_counts(const Scene& scene, const Preprocess
       built_pass_ = -1;  // the maps are the other threshold's
     }
   }
+  // Under a time budget, path tracing's error at its end, predicted from its own samples on the
+  // pilot's pixels, against ours.
+  if (settings_.path_fallback && pilot_.measured_bias && context.time_budget > 0 && horizon_seconds_ > 0) {
+    pilot_.path_error = pilot_path_error(scene, context.seed, pilot_.path_passes);
+    if (context.cancel && context.cancel->load()) return false;
+    pilot_.path_mode = caustic_.empty() && kPathFallbackMargin * pilot_.path_error < pilot_.predicted_error;
+    if (pilot_.path_mode) {
+      global_ = PhotonMap();
+      caustic_ = PhotonMap();
+      irradiance_ = IrradianceCache();
+    }
+  }
   return true;
+}
+
+double PhotonIntegrator::pilot_path_error(const Scene& scene, uint64_t seed, double& passes) const {
+  constexpr int M = kPathPilotPerPixel;
+  const int w = scene.camera.width(), h = scene.camera.height();
+  const int gx = std::min(w, kPilotGrid), gy = std::min(h, kPilotGrid);
+  std::vector<double> values(size_t(gx) * size_t(gy) * M);
+  const uint64_t path_seed = hash_seed(seed, 0x70617468, 0);  // "path"
+  const auto t0 = std::chrono::steady_clock::now();
+  tbb::parallel_for(0, gx * gy, [&](int cell) {
+    for (int j = 0; j < M; ++j) {
+      Sampler sampler(hash_seed(uint64_t(cell), uint64_t(j), path_seed));
+      const Ray ray = pilot_ray(scene, cell, gx, gy, sampler);
+      const double v = double(luminance(trace_path(ray, scene, sampler, settings_)));
+      values[size_t(cell) * M + size_t(j)] = std::isfinite(v) ? v : 0.0;
+    }
+  });
+  const double seconds_per_sample = seconds_since(t0) / double(values.size());
+  // Weighted as the photon pilot weighs its pixels (pilot_weights), summed in pixel order.
+  const std::vector<double> weights = pilot_weights(values, gx, gy, M);
+  double variance = 0;
+  for (size_t px = 0; px < weights.size(); ++px) variance += weights[px] * sample_variance(&values[px * M], M);
+  variance /= double(weights.size());
+  passes = std::max(1.0, horizon_seconds_ / (seconds_per_sample * double(w) * double(h)));
+  return variance / passes;
 }
 
 bool PhotonIntegrator::pilot_and_choose(const Scene& scene, const PreprocessContext& context, bool choose_photons,
@@ -598,13 +675,6 @@ bool PhotonIntegrator::pilot_and_choose(const Scene& scene, const PreprocessCont
   const double samples_seconds = seconds_since(t_samples);
   if (measure_bias) wider_discs(samples_mid, samples_wide);
   if (context.cancel && context.cancel->load()) return false;
-  auto sample_variance = [](const double* v, int n) {
-    double mean = 0, ss = 0;
-    for (int i = 0; i < n; ++i) mean += v[i];
-    mean /= n;
-    for (int i = 0; i < n; ++i) ss += (v[i] - mean) * (v[i] - mean);
-    return ss / (n - 1);
-  };
   // Sums in pixel order: the same for any thread count.
   SampleCountPilot r;
   r.ran = true;
@@ -612,19 +682,9 @@ bool PhotonIntegrator::pilot_and_choose(const Scene& scene, const PreprocessCont
   double work = 0, part_work[kPilotParts] = {}, v_maps_wide = 0, bias_44 = 0, bias_24 = 0;
   const size_t pixels = samples.size() / M;
   const int gx = std::min(scene.camera.width(), kPilotGrid), gy = int(pixels) / gx;
-  std::vector<double> neighbours_mean(pixels, 0.0);
-  for (int y = 0; y < gy; ++y)
-    for (int x = 0; x < gx; ++x) {
-      double sum = 0;
-      int count = 0;
-      for (int ny = std::max(0, y - 1); ny <= std::min(gy - 1, y + 1); ++ny)
-        for (int nx = std::max(0, x - 1); nx <= std::min(gx - 1, x + 1); ++nx) {
-          if (nx == x && ny == y) continue;
-          for (int j = 0; j < M; ++j) sum += samples[(size_t(ny) * size_t(gx) + size_t(nx)) * M + size_t(j)].value;
-          count += M;
-        }
-      neighbours_mean[size_t(y) * size_t(gx) + size_t(x)] = count > 0 ? sum / count : 0.0;
-    }
+  std::vector<double> sample_values(samples.size());
+  for (size_t i = 0; i < samples.size(); ++i) sample_values[i] = samples[i].value;
+  const std::vector<double> weights = pilot_weights(sample_values, gx, gy, M);
   // The maps' variance in a camera sample, from the same samples on two passes' maps: the mean
   // of the gather rays' differences has the per-ray part of the maps' noise (already in the
   // gather rays' spread) over P; the rest is shared.
@@ -648,10 +708,7 @@ bool PhotonIntegrator::pilot_and_choose(const Scene& scene, const PreprocessCont
       if (!other.empty()) v_maps += maps_variance(s[j], other[px * M + size_t(j)]) / M;
       if (measure_bias) v_wide += maps_variance(samples_wide[px * M + size_t(j)], other_wide[px * M + size_t(j)]) / M;
     }
-    // As the relMSE weighs a pixel's error, 1 / (reference^2 + 0.01), with the mean of the
-    // neighbouring pilot pixels' samples for the reference: the pixel's own would let its
-    // outliers shrink its weight, and their variance with it.
-    const double weight = 1.0 / (neighbours_mean[px] * neighbours_mean[px] + 0.01);
+    const double weight = weights[px];
     // Between one map's camera samples: V0 + (Vd + Vg + Vs) / P.
     r.v_pixel += weight * (sample_variance(values, M) - (v_part[kPilotDirect] + v_part[kPilotGather] + v_part[kPilotGlossy]) / P);
     r.v_direct += weight * v_part[kPilotDirect];
@@ -747,6 +804,7 @@ bool PhotonIntegrator::pilot_and_choose(const Scene& scene, const PreprocessCont
       const double rate = samples_seconds > 0 ? work / samples_seconds : 0.0;  // work per second
       const double left = std::max(0.0, context.time_budget * std::max(1, context.ranks) - seconds_since(preprocess_start_));
       horizon_work_ = std::max(ce, left * rate / (double(w) * double(h)));
+      horizon_seconds_ = left;
     }
     // For each photon scale on a grid: the counts for its variance at the passes it will
     // take (a fixed point under a budget, as the maps' variance grows with the passes) and the
@@ -768,6 +826,7 @@ bool PhotonIntegrator::pilot_and_choose(const Scene& scene, const PreprocessCont
       const double score = timed ? e : e * cw;
       if (score < best) best = score, x = xi, chosen = ci, r.horizon_passes = passes_i;
     }
+    r.predicted_error = timed ? best : 0.0;
     // In the units of the error without the bias (variance times work per sample).
     error = best * (timed ? horizon_work_ : double(context.passes));
   }
@@ -813,6 +872,9 @@ std::string PhotonIntegrator::describe() const {
         << " (relMSE-weighted), growing as (r^2)^" << pilot_.bias_exponent << "; the maps' variance as (r^2)^-"
         << pilot_.maps_growth << "; for "
         << std::lround(pilot_.horizon_passes) << " passes expected\n";
+    if (pilot_.path_error > 0)
+      s << "pilot, relMSE predicted at the budget's end: " << pilot_.predicted_error << " (ours, " << std::lround(pilot_.horizon_passes)
+        << " passes), " << pilot_.path_error << " (path tracing, " << std::lround(pilot_.path_passes) << " passes)" << (pilot_.path_mode ? ": the image is path traced (path_fallback)" : "") << "\n";
     if (pilot_.compared_caustic_threshold)
       s << "caustic threshold: " << settings_.caustic_threshold << " (the pilot's choice of it and 0)\n";
     s << "precomputed irradiance: " << (settings_.irradiance_stride > 0 ? "1 in " + std::to_string(std::max(2, settings_.irradiance_stride)) + " global photons (" + std::to_string(irradiance_.size()) + " points)" : std::string("off")) << "\n";

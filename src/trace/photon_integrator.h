@@ -46,6 +46,9 @@ struct PhotonSettings : MonteCarloSettings {
   // The default since it measured better at equal time at 10 to 120 s (BENCHMARKS.md).
   bool progressive = true;
   float alpha = 2.0f / 3.0f;
+  // Under a time budget, the image is path traced where the pilot predicts path tracing's error
+  // at the budget below ours (and no caustic photons are stored).
+  bool path_fallback = true;
 
   // Reads the integrator block (its keys were checked against the registry row).
   static PhotonSettings read(const Params& p, const RenderSettings& render, bool final_gather);
@@ -76,6 +79,11 @@ struct SampleCountPilot {
   double seconds_per_work = 0;  // the pilot samples' time over their work (all threads)
   // Whether caustic_threshold 0 was measured too (choose_sample_counts).
   bool compared_caustic_threshold = false;
+  // Under a time budget: the relMSE (weighted as above) the choice predicts at the budget's
+  // end, and path tracing's there, from its own pilot samples on the same pixels; path_mode:
+  // the image is path traced (PhotonSettings::path_fallback).
+  double predicted_error = 0, path_error = 0, path_passes = 0;
+  bool path_mode = false;
 };
 
 // Sample counts that minimise the error at equal time, (V0 + sum v_i / n_i)(C0 + sum n_i c_i),
@@ -114,7 +122,7 @@ class PhotonIntegrator final : public Integrator {
   // `photon-direct`: no final gathering, the global map seen directly.
   static std::unique_ptr<Integrator> create_direct(const Params& p, const RenderSettings& render);
   void preprocess(const Scene& scene, const PreprocessContext& context) override;
-  bool progressive() const override { return settings_.progressive; }
+  bool progressive() const override { return settings_.progressive && !pilot_.path_mode; }
   bool begin_pass(const Scene& scene, int pass, const PreprocessContext& context) override;
   Color Li(const Ray& ray, const Scene& scene, Sampler& sampler) const override;
   std::string name() const override { return final_gather_ ? "photon" : "photon-direct"; }
@@ -128,6 +136,10 @@ class PhotonIntegrator final : public Integrator {
   const SampleCountPilot& pilot() const { return pilot_; }
   // The pilot's bounds: shadow rays and gather rays per gather point, the photons' scale.
   static constexpr int kMaxSampleCount = 64;
+  // Path tracing is taken only where its predicted error is below ours by this factor: on six
+  // public scenes the two predictions each erred by up to 2x against the errors measured at
+  // 30 s (BENCHMARKS.md), so a closer call is no call.
+  static constexpr double kPathFallbackMargin = 1.5;
   static constexpr double kMinPhotonScale = 0.125, kMaxPhotonScale = 8.0;
   // The estimate settings in use after preprocess (radii resolved).
   const EstimateSettings& global_estimate() const { return global_est_; }
@@ -157,6 +169,11 @@ class PhotonIntegrator final : public Integrator {
   // Under a time budget, the render's work per pixel the pilot expects (-1: not yet taken), set
   // by the first pilot so that a second one is weighed at the same.
   double horizon_work_ = -1;
+  double horizon_seconds_ = 0;  // and the seconds (all ranks') it was taken from
+  // Path tracing's relMSE at the budget's end (SampleCountPilot::path_error), from
+  // kPathPilotPerPixel samples at each pilot pixel, timed.
+  static constexpr int kPathPilotPerPixel = 16;
+  double pilot_path_error(const Scene& scene, uint64_t seed, double& passes) const;
   std::chrono::steady_clock::time_point preprocess_start_;
   // The pilot: kPilotPerPixel camera samples at each pixel of a grid over the image.
   static constexpr int kPilotGrid = 64, kPilotPerPixel = 4;
