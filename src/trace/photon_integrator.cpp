@@ -328,7 +328,7 @@ Color PhotonIntegrator::final_gather(const Scene& scene, const SurfaceHit& hit, 
     // The emission a segment reaches is the gather's when the segment starts at the gather
     // point (direct light, shared with the shadow rays by MIS) or when a soft surface lies
     // between; through caustic surfaces alone it is the caustic map's.
-    bool counts_emission = true, past_soft = false;
+    bool counts_emission = true, past_soft = false, traced_glossy = false;
     // The gather ray's vertices are eye vertices eye_depth + 1, + 2, ...; at eye vertex
     // max_depth only the last segment's emission still fits in the path.
     for (int depth = 0; eye_depth + 1 + depth <= settings_.max_depth; ++depth) {
@@ -342,7 +342,19 @@ Color PhotonIntegrator::final_gather(const Scene& scene, const SurfaceHit& hit, 
       if (counts_emission)
         sum += throughput * emission_mis(scene, g, scene.emitted(g, g.frame.to_local(-ray.dir)), from);
       if (eye_depth + 1 + depth == settings_.max_depth) break;
-      if (is_gather_surface(m, settings_.glossy_threshold)) {
+      // A gather ray's first glossy (not diffuse) gather surface is traced through as a path
+      // tracer would, a shadow ray there and the estimate at the next surface: a glossy radiance
+      // estimate weighs every photon in its disc by the BSDF, and on Mitsuba's principled scene
+      // those estimates were most of the k-NN time (BENCHMARKS.md). From the second on, the
+      // estimate (a room of rough metal would otherwise path-trace every gather ray).
+      // The light it reflects is then a path tracer's: its shadow ray, and the emission the
+      // next segment reaches MIS-weighted against it (past_soft).
+      // (Not one with a delta coat: its gather passes the coat on below.)
+      const bool gather_surface = is_gather_surface(m, settings_.glossy_threshold);
+      const bool trace_glossy =
+          gather_surface && !traced_glossy && !m.diffuse_in_some_frame() && !m.has(kBsdfSpecular);
+      if (trace_glossy) traced_glossy = past_soft = true;
+      if (gather_surface && !trace_glossy) {
         sum += throughput * indirect_at(g, -ray.dir, scratch, eye_depth + 1 + depth);
         // The photon estimate has no delta part: a coat (plastic) passes the gather ray on, as
         // the caustic map's photons pass through it; the emission it reaches is the caustic map's.
