@@ -86,6 +86,7 @@ bool Scene::intersect_opaque(const Ray& ray, SurfaceHit& hit) const {
   Vec3 dpdu(0.0f), dpdv(0.0f), tangent(0.0f);
   hit.sp.uv = Vec2(0.0f);
   hit.sp.mesh = nullptr;
+  hit.sp.tilted_by = nullptr;
   if (prim.kind == ShapeKind::Sphere) {
     // u = phi / 2 pi, v = theta / pi (sphere_uv).
     const Vec3 d = (hit.p - prim.p0) / prim.radius();

@@ -25,6 +25,12 @@ enum BsdfFlags : uint32_t {
 // frame, world units per unit of u and v (zero where the surface has no texture coordinates).
 struct ShadingPoint : TexturePoint {
   Vec3 dpdu{0.0f}, dpdv{0.0f};
+  // A tilted BSDF's (bump or normal map's) frame here, kept by the first of its calls at this
+  // point (TiltedFrameBsdf::frame_at) for the others: a bump map's frame takes several texture
+  // lookups, and a vertex evaluates, samples and takes the density of its BSDF. Cleared
+  // whenever the point is filled (Scene's surface data).
+  mutable const void* tilted_by = nullptr;
+  mutable Frame tilted;
 };
 
 struct BsdfSample {

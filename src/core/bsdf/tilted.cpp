@@ -4,7 +4,7 @@
 namespace caustica {
 
 Color TiltedFrameBsdf::eval(const Vec3& wo, const Vec3& wi, const ShadingPoint& sp) const {
-  const Frame f = frame(sp);
+  const Frame& f = frame_at(sp);
   const Vec3 wi_p = f.to_local(wi);
   if (!(wi.z * wi_p.z > 0.0f)) return Color(0.0f);
   const float scale = std::abs(wi_p.z) / std::abs(wi.z);  // 1 exactly for an untilted frame
@@ -12,14 +12,14 @@ Color TiltedFrameBsdf::eval(const Vec3& wo, const Vec3& wi, const ShadingPoint& 
 }
 
 float TiltedFrameBsdf::pdf(const Vec3& wo, const Vec3& wi, const ShadingPoint& sp) const {
-  const Frame f = frame(sp);
+  const Frame& f = frame_at(sp);
   const Vec3 wi_p = f.to_local(wi);
   if (!(wi.z * wi_p.z > 0.0f)) return 0.0f;
   return nested_->pdf(f.to_local(wo), wi_p, sp);
 }
 
 bool TiltedFrameBsdf::sample(const Vec3& wo, const Vec2& u, float u_lobe, BsdfSample& s, const ShadingPoint& sp) const {
-  const Frame f = frame(sp);
+  const Frame& f = frame_at(sp);
   if (!nested_->sample(f.to_local(wo), u, u_lobe, s, sp)) return false;
   const Vec3 wi = f.to_world(s.wi);
   if (!(wi.z * s.wi.z > 0.0f)) return false;
@@ -28,7 +28,7 @@ bool TiltedFrameBsdf::sample(const Vec3& wo, const Vec2& u, float u_lobe, BsdfSa
 }
 
 int TiltedFrameBsdf::specular_lobes(const Vec3& wo, BsdfSample* out, const ShadingPoint& sp) const {
-  const Frame f = frame(sp);
+  const Frame& f = frame_at(sp);
   BsdfSample lobes[2];
   const int n = nested_->specular_lobes(f.to_local(wo), lobes, sp);
   int kept = 0;

@@ -24,6 +24,14 @@ class TiltedFrameBsdf : public Bsdf {
   float opacity(const ShadingPoint& sp = {}) const final { return nested_->opacity(sp); }
   // The tilted frame at a shading point, in the local frame's coordinates.
   virtual Frame frame(const ShadingPoint& sp) const = 0;
+  // frame(sp), computed once per shading point (ShadingPoint::tilted).
+  const Frame& frame_at(const ShadingPoint& sp) const {
+    if (sp.tilted_by != this) {
+      sp.tilted = frame(sp);
+      sp.tilted_by = this;
+    }
+    return sp.tilted;
+  }
 
  protected:
   const Bsdf* nested_;  // owned by the scene
