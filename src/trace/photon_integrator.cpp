@@ -823,8 +823,8 @@ bool PhotonIntegrator::pilot_and_choose(const Scene& scene, const PreprocessCont
     // error there; under a budget the least error, given passes the least error times the
     // work (the error at equal time).
     double best = std::numeric_limits<double>::infinity();
-    for (int i = 0; i <= 48; ++i) {
-      const double xi = kMinPhotonScale * std::pow(kMaxPhotonScale / kMinPhotonScale, i / 48.0);
+    for (int i = 0; i <= 64; ++i) {
+      const double xi = kMinPhotonScale * std::pow(kMaxPhotonScale / kMinPhotonScale, i / 64.0);
       double passes_i = timed ? 1.0 : double(context.passes);
       std::vector<double> ci;
       double vi = 0, cw = 0;
@@ -850,7 +850,7 @@ bool PhotonIntegrator::pilot_and_choose(const Scene& scene, const PreprocessCont
   if (choose_photons) {
     pilot_.photon_scale = x;
     auto scaled = [&](size_t photons) {
-      return std::clamp(size_t(double(photons) * x), PhotonSettings::kMinProgressivePhotons / 4,
+      return std::clamp(size_t(double(photons) * x), PhotonSettings::kMinProgressivePhotons / 16,
                         PhotonSettings::kMaxProgressivePhotons);
     };
     if (settings_.photons_from_image) settings_.photons = scaled(settings_.photons);

@@ -140,7 +140,10 @@ class PhotonIntegrator final : public Integrator {
   // public scenes the two predictions each erred by up to 2x against the errors measured at
   // 30 s (BENCHMARKS.md), so a closer call is no call.
   static constexpr double kPathFallbackMargin = 1.5;
-  static constexpr double kMinPhotonScale = 0.125, kMaxPhotonScale = 8.0;
+  // The pilot's range of photon scales (and at least kMinProgressivePhotons / 16 photons). Down
+  // to 1/32: under environment maps the maps add little variance, and at the former 1/8 the
+  // photon passes were a tenth of a render of Mitsuba's copper matpreview.
+  static constexpr double kMinPhotonScale = 1.0 / 32.0, kMaxPhotonScale = 8.0;
   // The estimate settings in use after preprocess (radii resolved).
   const EstimateSettings& global_estimate() const { return global_est_; }
   const EstimateSettings& caustic_estimate() const { return caustic_est_; }
