@@ -708,10 +708,8 @@ bool PhotonIntegrator::pilot_and_choose(const Scene& scene, const PreprocessCont
   };
   for (size_t px = 0; px < pixels; ++px) {
     const PilotSample* s = &samples[px * M];
-    double values[M], mean = 0, v_part[kPilotParts] = {}, v_maps = 0, v_wide = 0;
+    double v_part[kPilotParts] = {}, v_maps = 0, v_wide = 0;
     for (int j = 0; j < M; ++j) {
-      values[j] = s[j].value;
-      mean += s[j].value / M;
       work += s[j].work;
       for (int k = 0; k < kPilotParts; ++k) {
         v_part[k] += sample_variance(s[j].part[k], P) / M;
@@ -722,7 +720,7 @@ bool PhotonIntegrator::pilot_and_choose(const Scene& scene, const PreprocessCont
     }
     const double weight = weights[px];
     // Between one map's camera samples: V0 + (Vd + Vg + Vs) / P.
-    r.v_pixel += weight * (sample_variance(values, M) - (v_part[kPilotDirect] + v_part[kPilotGather] + v_part[kPilotGlossy]) / P);
+    r.v_pixel += weight * (sample_variance(&sample_values[px * M], M) - (v_part[kPilotDirect] + v_part[kPilotGather] + v_part[kPilotGlossy]) / P);
     r.v_direct += weight * v_part[kPilotDirect];
     r.v_gather += weight * v_part[kPilotGather];
     r.v_glossy += weight * v_part[kPilotGlossy];
