@@ -126,6 +126,15 @@ PhotonSettings PhotonSettings::read(const Params& p, const RenderSettings& rende
   s.direct_samples_given = !final_gather || p.has("direct_samples");
   s.glossy_direct_samples_given = !final_gather || p.has("glossy_direct_samples");
   s.caustic_threshold_given = !final_gather || p.has("caustic_threshold");
+  s.final_gather = !final_gather || p.boolean("final_gather", true);
+  s.final_gather_given = !final_gather || p.has("final_gather") || !s.progressive;
+  if (!s.final_gather) {
+    // The global map's estimate at the first diffuse hit: no gather rays, no caustic map.
+    s.gather_rays = 0;
+    s.gather_rays_given = true;
+    s.caustic_photons = 0;
+    s.caustic_photons_from_image = false;
+  }
   integer("irradiance_stride", s.irradiance_stride, 0, 1 << 20);
   number("glossy_threshold", s.glossy_threshold);
   number("caustic_threshold", s.caustic_threshold);
@@ -223,7 +232,7 @@ void PhotonIntegrator::set_disc_photons(int factor) {
 
 void PhotonIntegrator::build_irradiance() {
   irradiance_ = IrradianceCache{};  // never a previous pass's
-  if (!final_gather_ || settings_.irradiance_stride <= 0 || global_.empty()) return;
+  if (!final_gather_ || !settings_.final_gather || settings_.irradiance_stride <= 0 || global_.empty()) return;
   const auto t0 = std::chrono::steady_clock::now();
   // For the gathers' points at eye vertices 1 .. 8 (gathers from eye vertices 0 .. 7).
   irradiance_.build(global_, size_t(settings_.irradiance_stride), at_depth(global_est_, 1), 8);
@@ -433,8 +442,9 @@ Color PhotonIntegrator::trace_eye(const Ray& start, const Scene& scene, Sampler&
       // samples and count the emission their first segment reaches (final_gather).
       // (The pilot takes Probe::kSamples of each.)
       const int nd = probe ? Probe::kSamples : settings_.direct_samples;
-      const int ng = probe ? Probe::kSamples : settings_.gather_rays;
-      const float ratio = probe ? 1.0f : gather_ratio();
+      const bool gathering = settings_.final_gather;
+      const int ng = !gathering ? 0 : probe ? Probe::kSamples : settings_.gather_rays;
+      const float ratio = !gathering ? 0.0f : probe ? 1.0f : gather_ratio();
       // Stratified, except for the pilot (it takes one sample's variance from their spread).
       const StratifiedDirect lights(sampler, probe ? 1 : nd);
       Color direct(0.0f);
@@ -448,17 +458,27 @@ Color PhotonIntegrator::trace_eye(const Ray& start, const Scene& scene, Sampler&
       if (!caustic_.empty()) L += beta * counted_estimate(caustic_, hit, wo, at_depth(caustic_est_, depth), scratch);
       // A delta lobe beside the diffuse one (plastic's coat): traced as the eye path goes on,
       // while the final gather covers the other lobes only. Without splits left, the gather's
-      // delta samples carry it instead.
-      const bool trace_coat = splits_left > 0 && m.has(kBsdfSpecular);
-      L += beta * final_gather(scene, hit, wo, sampler, scratch, trace_coat, depth, ng, ratio, beta, probe);
+      // delta samples carry it instead; without the gather, the coat is traced at any depth
+      // (one lobe: a chain, not a tree).
+      const bool has_coat = m.has(kBsdfSpecular);
+      BsdfSample coat[2];
+      const int n_coat = has_coat && (splits_left > 0 || !gathering) ? m.specular_lobes(wo_l, coat, hit.sp) : 0;
+      const bool trace_coat = gathering ? splits_left > 0 && has_coat : n_coat > 0 && (splits_left > 0 || n_coat == 1);
+      if (gathering) {
+        L += beta * final_gather(scene, hit, wo, sampler, scratch, trace_coat, depth, ng, ratio, beta, probe);
+      } else {
+        // The global map's photons of one bounce or more (the direct light is the shadow rays').
+        const EstimateSettings est = at_depth(global_est_, depth);
+        if (est.max_bounces >= 1)
+          L += beta * counted_estimate(global_, hit, wo, with_bounces(est, 1, est.max_bounces), scratch);
+      }
       if (trace_coat) {
-        BsdfSample coat[2];
-        const int n = m.specular_lobes(wo_l, coat, hit.sp);
+        const int n = n_coat;
         for (int i = 0; i < n; ++i) {
           const Vec3 wi = hit.frame.to_world(coat[i].wi);
           if (is_black(coat[i].weight) || hit.leaks(wi)) continue;
           const Probe::Nested nested(probe, beta * coat[i].weight);
-          L += beta * coat[i].weight * trace_eye(spawn_ray(hit.p, hit.n, wi), scene, sampler, depth + 1, splits_left - 1, probe);
+          L += beta * coat[i].weight * trace_eye(spawn_ray(hit.p, hit.n, wi), scene, sampler, depth + 1, std::max(splits_left - 1, 0), probe);
         }
       }
       return L;
@@ -603,14 +623,46 @@ bool PhotonIntegrator::choose_sample_counts(const Scene& scene, const Preprocess
       pilot_ = with_pilot;
       pilot_.compared_caustic_threshold = true;
       built_pass_ = -1;  // the maps are the other threshold's
+    } else {
+      error = error_without;
     }
+  }
+  const bool caustic_paths = !caustic_.empty();
+  // The global map's estimate at the first diffuse hit instead of the final gather (no caustic
+  // map then: the global map holds those paths): measured where the radii's bias is (it is
+  // most of that estimate's error), and kept where its predicted error is the less by
+  // kEstimateMargin.
+  if (!settings_.final_gather_given && pilot_.measured_bias) {
+    const PhotonSettings with = settings_;
+    const SampleCountPilot with_pilot = pilot_;
+    settings_ = asked;
+    settings_.final_gather = false;
+    settings_.gather_rays = 0;
+    settings_.gather_rays_given = true;
+    settings_.caustic_photons = 0;
+    settings_.caustic_photons_from_image = false;
+    built_pass_ = -1;
+    double error_estimate = 0;
+    if (!pilot_and_choose(scene, context, choose_photons, error_estimate)) return false;
+    const double error_gather = error;
+    if (!(kEstimateMargin * error_estimate < error)) {
+      settings_ = with;
+      pilot_ = with_pilot;
+      built_pass_ = -1;  // the maps are the final gather's
+    } else {
+      error = error_estimate;
+      pilot_.compared_caustic_threshold = with_pilot.compared_caustic_threshold;
+    }
+    pilot_.compared_final_gather = true;
+    pilot_.final_gather_error = error_gather;
+    pilot_.estimate_error = error_estimate;
   }
   // Under a time budget, path tracing's error at its end, predicted from its own samples on the
   // pilot's pixels, against ours.
   if (settings_.path_fallback && pilot_.measured_bias && context.time_budget > 0 && horizon_seconds_ > 0) {
     pilot_.path_error = pilot_path_error(scene, context.seed, pilot_.path_passes);
     if (context.cancel && context.cancel->load()) return false;
-    pilot_.path_mode = caustic_.empty() && kPathFallbackMargin * pilot_.path_error < pilot_.predicted_error;
+    pilot_.path_mode = !caustic_paths && kPathFallbackMargin * pilot_.path_error < pilot_.predicted_error;
     if (pilot_.path_mode) {
       global_ = PhotonMap();
       caustic_ = PhotonMap();
@@ -866,6 +918,12 @@ std::string PhotonIntegrator::describe() const {
   s << "global map: " << ng << " stored, k " << global_est_.k << ", max radius " << global_est_.max_radius << "\n";
   if (final_gather_) {
     s << "caustic map: " << nc << " stored, k " << caustic_est_.k << ", max radius " << caustic_est_.max_radius << ", cone filter k " << caustic_est_.cone_k << "\n";
+    s << "indirect light at the first diffuse hit: "
+      << (settings_.final_gather ? "final gathering" : "the global map's estimate (no caustic map)");
+    if (pilot_.compared_final_gather)
+      s << " (pilot: error at equal time " << pilot_.final_gather_error << " gathering, " << pilot_.estimate_error
+        << " with the estimate)";
+    s << "\n";
     s << "gather rays: " << settings_.gather_rays << (settings_.gather_rays_given ? "" : " (pilot)")
       << "\ndirect samples: " << settings_.direct_samples << (settings_.direct_samples_given ? "" : " (pilot)")
       << "\nglossy direct samples: " << settings_.glossy_direct_samples
