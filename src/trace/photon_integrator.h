@@ -79,7 +79,7 @@ struct SampleCountPilot {
   // The progressive radii's bias (measured when the photons are chosen and the render's length
   // is known): the relMSE-weighted squared bias of one pass's image at the first radii, from
   // estimates at three disc sizes with the same samples, and how it grows with the disc's
-  // area (as (r^2)^bias_exponent, within 1/2 and 1); how the maps' variance grows as the radii
+  // area (as (r^2)^bias_exponent, within 1/2 and 1; 1/4 and 1 for the estimate without final gathering); how the maps' variance grows as the radii
   // shrink (v_maps scales as (r^2)^-maps_growth); the passes the choice expects.
   bool measured_bias = false;
   double bias2 = 0, bias_exponent = 1, maps_growth = 0, horizon_passes = 0;
