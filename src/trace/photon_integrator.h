@@ -154,7 +154,7 @@ class PhotonIntegrator final : public Integrator {
   static constexpr double kPathFallbackMargin = 1.5;
   // Likewise the global map's estimate in place of final gathering (final_gather not given):
   // on Mitsuba's test_various_emitters it was predicted 1.28x better and measured 1.6x worse
-  // at 30 s; on the scenes where it measured better it was predicted 2x to 50x better.
+  // at 30 s; on the scenes where it measured better it was predicted 2.5x to 9x better.
   static constexpr double kEstimateMargin = 1.5;
   // The pilot's range of photon scales (and at least kMinProgressivePhotons / 16 photons). Down
   // to 1/32: under environment maps the maps add little variance, and at the former 1/8 the
