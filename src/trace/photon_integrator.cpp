@@ -127,7 +127,9 @@ PhotonSettings PhotonSettings::read(const Params& p, const RenderSettings& rende
   s.glossy_direct_samples_given = !final_gather || p.has("glossy_direct_samples");
   s.caustic_threshold_given = !final_gather || p.has("caustic_threshold");
   s.final_gather = !final_gather || p.boolean("final_gather", true);
-  s.final_gather_given = !final_gather || p.has("final_gather") || !s.progressive;
+  // Keys of final gathering's given: they say which estimator is wanted.
+  s.final_gather_given = !final_gather || p.has("final_gather") || !s.progressive || p.has("gather_rays") ||
+                         p.has("caustic_photons") || p.has("caustic_k") || p.has("caustic_radius");
   if (!s.final_gather) {
     // The global map's estimate at the first diffuse hit: no gather rays, no caustic map.
     s.gather_rays = 0;
@@ -458,12 +460,25 @@ Color PhotonIntegrator::trace_eye(const Ray& start, const Scene& scene, Sampler&
       if (!caustic_.empty()) L += beta * counted_estimate(caustic_, hit, wo, at_depth(caustic_est_, depth), scratch);
       // A delta lobe beside the diffuse one (plastic's coat): traced as the eye path goes on,
       // while the final gather covers the other lobes only. Without splits left, the gather's
-      // delta samples carry it instead; without the gather, the coat is traced at any depth
-      // (one lobe: a chain, not a tree).
+      // delta samples carry it instead; without the gather, one of the delta lobes is then
+      // followed, chosen by its weight, and none with the probability of their sum's shortfall
+      // from 1 (Russian roulette: the chain of coats ends).
       const bool has_coat = m.has(kBsdfSpecular);
       BsdfSample coat[2];
-      const int n_coat = has_coat && (splits_left > 0 || !gathering) ? m.specular_lobes(wo_l, coat, hit.sp) : 0;
-      const bool trace_coat = gathering ? splits_left > 0 && has_coat : n_coat > 0 && (splits_left > 0 || n_coat == 1);
+      int n_coat = has_coat && (splits_left > 0 || !gathering) ? m.specular_lobes(wo_l, coat, hit.sp) : 0;
+      if (!gathering && splits_left == 0 && n_coat > 0) {
+        float p[2] = {max_component(coat[0].weight), n_coat > 1 ? max_component(coat[1].weight) : 0.0f};
+        const float total = std::max(p[0] + p[1], 1.0f);
+        const float u = sampler.next1d() * total;
+        const int pick = u < p[0] ? 0 : u < p[0] + p[1] ? 1 : -1;
+        n_coat = 0;
+        if (pick >= 0 && p[pick] > 0.0f) {
+          coat[0] = coat[pick];
+          coat[0].weight /= p[pick] / total;
+          n_coat = 1;
+        }
+      }
+      const bool trace_coat = gathering ? splits_left > 0 && has_coat : n_coat > 0;
       if (gathering) {
         L += beta * final_gather(scene, hit, wo, sampler, scratch, trace_coat, depth, ng, ratio, beta, probe);
       } else {
@@ -627,12 +642,13 @@ bool PhotonIntegrator::choose_sample_counts(const Scene& scene, const Preprocess
       error = error_without;
     }
   }
-  const bool caustic_paths = !caustic_.empty();
+  // (With final_gather false given, no caustic map is traced to tell: taken as there being some.)
+  const bool caustic_paths = !caustic_.empty() || !settings_.final_gather;
   // The global map's estimate at the first diffuse hit instead of the final gather (no caustic
   // map then: the global map holds those paths): measured where the radii's bias is (it is
   // most of that estimate's error), and kept where its predicted error is the less by
   // kEstimateMargin.
-  if (!settings_.final_gather_given && pilot_.measured_bias) {
+  if (!settings_.final_gather_given && settings_.photons_from_image && pilot_.measured_bias) {
     const PhotonSettings with = settings_;
     const SampleCountPilot with_pilot = pilot_;
     settings_ = asked;

@@ -540,4 +540,14 @@ TEST_CASE("photon: the pilot weighs the global map's estimate against final gath
   const Prepared counts = prepare_photon(recessed, R"({"photons": 20000, "caustic_photons": 20000})", 64, 2, 64);
   CHECK_FALSE(counts.photon().pilot().compared_final_gather);
   CHECK(counts.photon().settings().final_gather);
+  // Keys that ask for the gather: kept (gather_rays 0 means no indirect light, not the estimate).
+  const Prepared rays = prepare_photon(recessed, R"({"gather_rays": 0})", 512, 2, 24);
+  CHECK_FALSE(rays.photon().pilot().compared_final_gather);
+  CHECK(rays.photon().settings().final_gather);
+  CHECK(rays.photon().settings().gather_rays == 0);
+  // Given false, no caustic map tells whether the scene has caustics: no path fallback (the
+  // sky-lit ball path traces with the gather, the test above).
+  const Prepared est = prepare_photon(sky_scene(false), R"({"final_gather": false})", 64, 2, 0, 60);
+  CHECK_FALSE(est.photon().pilot().path_mode);
+  CHECK(est.integrator->progressive());
 }
