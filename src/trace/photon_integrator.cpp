@@ -130,19 +130,21 @@ PhotonSettings PhotonSettings::read(const Params& p, const RenderSettings& rende
   // Keys of final gathering's given: they say which estimator is wanted.
   s.final_gather_given = !final_gather || p.has("final_gather") || !s.progressive || p.has("gather_rays") ||
                          p.has("caustic_photons") || p.has("caustic_k") || p.has("caustic_radius");
-  if (!s.final_gather) {
-    // The global map's estimate at the first diffuse hit: no gather rays, no caustic map.
-    s.gather_rays = 0;
-    s.gather_rays_given = true;
-    s.caustic_photons = 0;
-    s.caustic_photons_from_image = false;
-  }
+  if (!s.final_gather) s.use_global_estimate();
   integer("irradiance_stride", s.irradiance_stride, 0, 1 << 20);
   number("glossy_threshold", s.glossy_threshold);
   number("caustic_threshold", s.caustic_threshold);
   s.alpha = float(p.number_in("alpha", s.alpha, 1e-3, 0.999));
   s.path_fallback = final_gather && p.boolean("path_fallback", true);
   return s;
+}
+
+void PhotonSettings::use_global_estimate() {
+  final_gather = false;
+  gather_rays = 0;
+  gather_rays_given = true;
+  caustic_photons = 0;
+  caustic_photons_from_image = false;
 }
 
 size_t PhotonSettings::photons_for_image(int width, int height) {
@@ -445,7 +447,7 @@ Color PhotonIntegrator::trace_eye(const Ray& start, const Scene& scene, Sampler&
       // (The pilot takes Probe::kSamples of each.)
       const int nd = probe ? Probe::kSamples : settings_.direct_samples;
       const bool gathering = settings_.final_gather;
-      const int ng = !gathering ? 0 : probe ? Probe::kSamples : settings_.gather_rays;
+      const int ng = probe ? Probe::kSamples : settings_.gather_rays;
       const float ratio = !gathering ? 0.0f : probe ? 1.0f : gather_ratio();
       // Stratified, except for the pilot (it takes one sample's variance from their spread).
       const StratifiedDirect lights(sampler, probe ? 1 : nd);
@@ -488,8 +490,7 @@ Color PhotonIntegrator::trace_eye(const Ray& start, const Scene& scene, Sampler&
           L += beta * counted_estimate(global_, hit, wo, with_bounces(est, 1, est.max_bounces), scratch);
       }
       if (trace_coat) {
-        const int n = n_coat;
-        for (int i = 0; i < n; ++i) {
+        for (int i = 0; i < n_coat; ++i) {
           const Vec3 wi = hit.frame.to_world(coat[i].wi);
           if (is_black(coat[i].weight) || hit.leaks(wi)) continue;
           const Probe::Nested nested(probe, beta * coat[i].weight);
@@ -614,6 +615,24 @@ bool PhotonIntegrator::choose_sample_counts(const Scene& scene, const Preprocess
   const PhotonSettings asked = settings_;
   double error = 0;
   if (!pilot_and_choose(scene, context, choose_photons, error)) return false;
+  // The pilot once more with the asked settings changed by `change`: kept (1) where its error
+  // times `margin` is below the choice so far, which is restored otherwise (0); -1: stopped.
+  auto weigh = [&](auto change, double margin, double& changed_error) {
+    const PhotonSettings with = settings_;
+    const SampleCountPilot with_pilot = pilot_;
+    settings_ = asked;
+    change(settings_);
+    built_pass_ = -1;
+    if (!pilot_and_choose(scene, context, choose_photons, changed_error)) return -1;
+    if (margin * changed_error < error) {
+      error = changed_error;
+      return 1;
+    }
+    settings_ = with;
+    pilot_ = with_pilot;
+    built_pass_ = -1;  // the maps are the other choice's
+    return 0;
+  };
   // Caustics through near-specular glossy surfaces: the caustic map's estimate at every gather
   // point can cost more than it saves (a k-NN search where few caustic photons lie). The
   // other way, caustic_threshold 0, leaves them to the final gather (shadow rays at the glossy
@@ -625,22 +644,9 @@ bool PhotonIntegrator::choose_sample_counts(const Scene& scene, const Preprocess
   };
   if (settings_.progressive && !settings_.caustic_threshold_given && settings_.caustic_threshold > 0 &&
       !caustic_.empty() && std::any_of(scene.materials.begin(), scene.materials.end(), near_specular)) {
-    const PhotonSettings with = settings_;
-    const SampleCountPilot with_pilot = pilot_;
-    settings_ = asked;
-    settings_.caustic_threshold = 0;
-    built_pass_ = -1;
     double error_without = 0;
-    if (!pilot_and_choose(scene, context, choose_photons, error_without)) return false;
+    if (weigh([](PhotonSettings& s) { s.caustic_threshold = 0; }, 1.0, error_without) < 0) return false;
     pilot_.compared_caustic_threshold = true;
-    if (!(error_without < error)) {
-      settings_ = with;
-      pilot_ = with_pilot;
-      pilot_.compared_caustic_threshold = true;
-      built_pass_ = -1;  // the maps are the other threshold's
-    } else {
-      error = error_without;
-    }
   }
   // (With final_gather false given, no caustic map is traced to tell: taken as there being some.)
   const bool caustic_paths = !caustic_.empty() || !settings_.final_gather;
@@ -649,26 +655,11 @@ bool PhotonIntegrator::choose_sample_counts(const Scene& scene, const Preprocess
   // most of that estimate's error), and kept where its predicted error is the less by
   // kEstimateMargin.
   if (!settings_.final_gather_given && settings_.photons_from_image && pilot_.measured_bias) {
-    const PhotonSettings with = settings_;
-    const SampleCountPilot with_pilot = pilot_;
-    settings_ = asked;
-    settings_.final_gather = false;
-    settings_.gather_rays = 0;
-    settings_.gather_rays_given = true;
-    settings_.caustic_photons = 0;
-    settings_.caustic_photons_from_image = false;
-    built_pass_ = -1;
-    double error_estimate = 0;
-    if (!pilot_and_choose(scene, context, choose_photons, error_estimate)) return false;
+    const bool compared_threshold = pilot_.compared_caustic_threshold;
     const double error_gather = error;
-    if (!(kEstimateMargin * error_estimate < error)) {
-      settings_ = with;
-      pilot_ = with_pilot;
-      built_pass_ = -1;  // the maps are the final gather's
-    } else {
-      error = error_estimate;
-      pilot_.compared_caustic_threshold = with_pilot.compared_caustic_threshold;
-    }
+    double error_estimate = 0;
+    if (weigh([](PhotonSettings& s) { s.use_global_estimate(); }, kEstimateMargin, error_estimate) < 0) return false;
+    pilot_.compared_caustic_threshold = compared_threshold;
     pilot_.compared_final_gather = true;
     pilot_.final_gather_error = error_gather;
     pilot_.estimate_error = error_estimate;

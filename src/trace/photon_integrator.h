@@ -41,6 +41,8 @@ struct PhotonSettings : MonteCarloSettings {
   // Not given, the pilot measures both and keeps the one of less predicted error.
   bool final_gather = true;
   bool final_gather_given = true;
+  // final_gather false, and what it implies: no gather rays, no caustic photons.
+  void use_global_estimate();
   int irradiance_stride = 4; // precompute irradiance at 1 in n global photons (IrradianceCache); 0: off
   // Photons are stored, and eye paths stop to gather, on a diffuse lobe or a glossy lobe at
   // least this rough (microfacet alpha); smoother glossy surfaces are traced through.
@@ -227,7 +229,7 @@ class PhotonIntegrator final : public Integrator {
 
   // BSDF (gather) samples per shadow-ray sample at a gather point, for MIS; 0 without gathering.
   float gather_ratio() const {
-    return final_gather_ && settings_.final_gather && settings_.gather_rays > 0 ? float(settings_.gather_rays) / float(settings_.direct_samples) : 0.0f;
+    return final_gather_ && settings_.gather_rays > 0 ? float(settings_.gather_rays) / float(settings_.direct_samples) : 0.0f;
   }
   bool final_gather_;
   PhotonSettings settings_;
