@@ -23,4 +23,23 @@ inline bool is_caustic_surface(const Bsdf& m, float caustic_threshold) {
   return m.has(kBsdfSpecular) || m.glossy_roughness() < caustic_threshold;
 }
 
+// The delta lobes of a gather surface (plastic's coat; glass blended with a diffuse BSDF), which
+// no photon estimate holds: the direction along which a caustic photon or a gather ray passes
+// on. One listed lobe is followed with its weight. Otherwise (two lobes, or more than
+// specular_lobes can list) one BSDF sample is, when it is a delta one: its weight is the lobe's
+// over its chance, so its mean is the delta lobes' part and no more. False: none (the numbers
+// are drawn from `uniform` only then).
+template <class Uniform>
+bool delta_continuation(const Bsdf& m, const Vec3& wo, const ShadingPoint& sp, Uniform&& uniform, BsdfSample& out) {
+  if (!m.has(kBsdfSpecular)) return false;
+  BsdfSample listed[2];
+  if (m.specular_lobes(wo, listed, sp) == 1) {
+    out = listed[0];
+    return true;
+  }
+  const float u_lobe = uniform();
+  const float u0 = uniform(), u1 = uniform();
+  return m.sample(wo, Vec2(u0, u1), u_lobe, out, sp) && out.delta;
+}
+
 }  // namespace caustica

@@ -142,10 +142,10 @@ void trace_photon(const Scene& scene, Ray ray, Color flux, bool caustic, const P
         if (specular_bounces > 0) out.push_back({hit.p, flux, wo, n_side, depth});
         // The caustic map keeps only L S+ D: the photon goes on only along a delta lobe of this
         // surface (plastic's coat), which is not part of the estimate stored here.
-        BsdfSample coat[2];
-        if (!m.has(kBsdfSpecular) || m.specular_lobes(wo_l, coat, hit.sp) != 1) return;
-        const Vec3 wi = hit.frame.to_world(coat[0].wi);
-        flux *= coat[0].weight;
+        BsdfSample coat;
+        if (!delta_continuation(m, wo_l, hit.sp, [&] { return rng.next_float(); }, coat)) return;
+        const Vec3 wi = hit.frame.to_world(coat.wi);
+        flux *= coat.weight;
         ++specular_bounces;
         if (hit.leaks(wi) || is_black(flux)) return;
         ray = spawn_ray(hit.p, hit.n, wi);

@@ -371,11 +371,11 @@ Color PhotonIntegrator::final_gather(const Scene& scene, const SurfaceHit& hit, 
         sum += throughput * indirect_at(g, -ray.dir, scratch, eye_depth + 1 + depth);
         // The photon estimate has no delta part: a coat (plastic) passes the gather ray on, as
         // the caustic map's photons pass through it; the emission it reaches is the caustic map's.
-        BsdfSample coat[2];
-        if (!m.has(kBsdfSpecular) || m.specular_lobes(g.frame.to_local(-ray.dir), coat, g.sp) != 1) break;
-        const Vec3 cwi = g.frame.to_world(coat[0].wi);
+        BsdfSample coat;
+        if (!delta_continuation(m, g.frame.to_local(-ray.dir), g.sp, [&] { return sampler.next1d(); }, coat)) break;
+        const Vec3 cwi = g.frame.to_world(coat.wi);
         if (g.leaks(cwi)) break;
-        throughput *= coat[0].weight;
+        throughput *= coat.weight;
         from = BsdfVertex{};
         counts_emission = past_soft;
         ray = spawn_ray(g.p, g.n, cwi);
@@ -464,11 +464,16 @@ Color PhotonIntegrator::trace_eye(const Ray& start, const Scene& scene, Sampler&
       // while the final gather covers the other lobes only. Without splits left, the gather's
       // delta samples carry it instead; without the gather, one of the delta lobes is then
       // followed, chosen by its weight, and none with the probability of their sum's shortfall
-      // from 1 (Russian roulette: the chain of coats ends).
+      // from 1 (Russian roulette: the chain of coats ends). Where the BSDF cannot list its delta
+      // lobes (more than two: glass under a coat), the gather's delta samples carry them; without
+      // the gather, one BSDF sample is followed when it is a delta one (its weight is the lobe's
+      // over its chance, so its mean is the delta lobes' part and no more).
       const bool has_coat = m.has(kBsdfSpecular);
       BsdfSample coat[2];
       int n_coat = has_coat && (splits_left > 0 || !gathering) ? m.specular_lobes(wo_l, coat, hit.sp) : 0;
-      if (!gathering && splits_left == 0 && n_coat > 0) {
+      if (!gathering && has_coat && n_coat == 0) {
+        n_coat = delta_continuation(m, wo_l, hit.sp, [&] { return sampler.next1d(); }, coat[0]) ? 1 : 0;
+      } else if (!gathering && splits_left == 0 && n_coat > 0) {
         float p[2] = {max_component(coat[0].weight), n_coat > 1 ? max_component(coat[1].weight) : 0.0f};
         const float total = std::max(p[0] + p[1], 1.0f);
         const float u = sampler.next1d() * total;
@@ -480,7 +485,7 @@ Color PhotonIntegrator::trace_eye(const Ray& start, const Scene& scene, Sampler&
           n_coat = 1;
         }
       }
-      const bool trace_coat = gathering ? splits_left > 0 && has_coat : n_coat > 0;
+      const bool trace_coat = n_coat > 0;  // (gathering, listed only with splits left)
       if (gathering) {
         L += beta * final_gather(scene, hit, wo, sampler, scratch, trace_coat, depth, ng, ratio, beta, probe);
       } else {
@@ -648,7 +653,11 @@ bool PhotonIntegrator::choose_sample_counts(const Scene& scene, const Preprocess
     if (weigh([](PhotonSettings& s) { s.caustic_threshold = 0; }, 1.0, error_without) < 0) return false;
     pilot_.compared_caustic_threshold = true;
   }
-  // (With final_gather false given, no caustic map is traced to tell: taken as there being some.)
+  // The caustic map last traced: after the comparison above, caustic_threshold 0's whichever was
+  // kept (so caustics through delta surfaces alone: near-specular glossy ones path tracing
+  // renders too, and its predicted error says how well). Without the comparison, no surface is
+  // near-specular and the two maps are the same. (With final_gather false given, no caustic map
+  // is traced to tell: taken as there being some.)
   const bool caustic_paths = !caustic_.empty() || !settings_.final_gather;
   // The global map's estimate at the first diffuse hit instead of the final gather (no caustic
   // map then: the global map holds those paths): measured where the radii's bias is (it is

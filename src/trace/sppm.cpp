@@ -80,11 +80,15 @@ Color SppmIntegrator::Li(const Ray& camera_ray, const Scene& scene, Sampler& sam
       continue;
     }
     // A coat (plastic's delta lobe) is not in the photon estimate: follow it instead of
-    // stopping here, with probability in proportion to its weight.
+    // stopping here, with probability in proportion to its weight (one listed lobe), or a half
+    // (a delta continuation drawn from the BSDF: delta_continuation).
     BsdfSample coat[2];
-    if (m.has(kBsdfSpecular) && m.specular_lobes(hit.frame.to_local(wo), coat, hit.sp) == 1 && !is_black(coat[0].weight)) {
-      const float p_coat = std::clamp(max_component(coat[0].weight), 0.1f, 0.9f);
+    const bool listed = m.has(kBsdfSpecular) && m.specular_lobes(hit.frame.to_local(wo), coat, hit.sp) == 1;
+    if (m.has(kBsdfSpecular) && (!listed || !is_black(coat[0].weight))) {
+      const float p_coat = listed ? std::clamp(max_component(coat[0].weight), 0.1f, 0.9f) : 0.5f;
       if (sampler.next1d() < p_coat) {
+        if (!listed && !delta_continuation(m, hit.frame.to_local(wo), hit.sp, [&] { return sampler.next1d(); }, coat[0]))
+          break;
         const Vec3 wi = hit.frame.to_world(coat[0].wi);
         if (hit.leaks(wi)) break;
         path.beta *= coat[0].weight / p_coat;

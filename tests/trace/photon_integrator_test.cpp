@@ -100,6 +100,30 @@ TEST_CASE("photon: with final_gather false (the global map's estimate at the fir
                             R"({"final_gather": false, "direct_samples": 4, "glossy_direct_samples": 4, "photons": 20000})", 0.06);
 }
 
+TEST_CASE("photon: a diffuse surface with more than two delta lobes (glass under a coat) matches the path tracer, "
+          "gathering and with the global map's estimate, and SPPM", "[trace][photon][reference]") {
+  // The coat's mirror, and the glass's reflection and refraction under it: more delta lobes than
+  // specular_lobes lists, so the eye path cannot trace them as plastic's coat; the gather's
+  // delta samples (or, without the gather, a BSDF sample that is a delta one) carry them. When
+  // the listing kept two of the three, the sphere's quarter of the image was 21 % dark. The
+  // sphere is lifted off the floor: resting on it, photons stored inside its bottom lie within
+  // the floor's discs by the contact point, face up, and read there (10 % too bright in that
+  // region after 32 passes; the discs shrink past them as the passes go on).
+  nlohmann::json scene = nlohmann::json::parse(test::read_scene_file("scenes/cornell-spheres.json"));
+  for (auto& object : scene["objects"])
+    if (object.value("name", "") == "glass-sphere") object["center"] = {170, 160, 200};
+  scene["materials"]["glass"] = nlohmann::json::parse(R"({"type": "coating", "int_ior": 1.5, "bsdf": {"type": "blendbsdf",
+      "weight": 0.7, "bsdf": [{"type": "diffuse", "reflectance": [0.8, 0.8, 0.8]}, {"type": "dielectric", "int_ior": 1.5}]}})");
+  const std::string text = scene.dump();
+  const Image ref = render_text(text, "path", "{}", 1024, 64, 64, 3).image;
+  for (const char* settings : {R"({"photons": 50000})", R"({"photons": 50000, "final_gather": false})"}) {
+    INFO(settings);
+    check_photon_matches(ref, render_text(text, "photon", settings, 32, 64, 64, 4).image, "coated glass", 0.06);
+  }
+  // SPPM follows such a surface's delta lobes for half of its samples.
+  check_photon_matches(ref, render_text(text, "sppm", R"({"photons": 50000})", 64, 64, 64, 4).image, "coated glass, sppm", 0.06);
+}
+
 TEST_CASE("photon: matches the path tracer on the glossy Cornell box (Phong floor)", "[trace][photon][reference]") {
   check_photon_against_path("scenes/glossy-cornell.json", 64, 64, 4096, 32,
                             R"({"gather_rays": 16, "photons": 50000, "caustic_photons": 50000})", 0.06);

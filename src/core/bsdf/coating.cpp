@@ -145,11 +145,13 @@ int Coating::specular_lobes(const Vec3& wo, BsdfSample* out, const ShadingPoint&
   out[n++].lobe = kBsdfSpecular | kBsdfReflection;
   Vec3 a;
   BsdfSample inner[2];
-  // (Only true delta lobes: a glossy BSDF's specular_lobes are its smooth limit.)
+  // (Only true delta lobes: a glossy BSDF's specular_lobes are its smooth limit.) More than
+  // two in all (glass under the coat): none listed, as the contract above has no room for them.
   const int k = nested_->has(kBsdfSpecular) && refract_in(wo, a) ? nested_->specular_lobes(a, inner, sp) : 0;
-  for (int i = 0; i < k && n < 2; ++i) {
+  for (int i = 0; i < k; ++i) {
     Vec3 wi;
     if (!refract_out(inner[i].wi, wi)) continue;
+    if (n == 2) return 0;
     out[n] = inner[i];
     out[n].wi = wi;
     out[n++].weight = inner[i].weight * absorption(a, inner[i].wi, sp) *
