@@ -113,13 +113,22 @@ std::unique_ptr<Integrator> integrator_for(const LoadedScene& loaded, const std:
   }
   if (settings.file.empty()) settings.file = options.scene;
   if (settings.pointer.empty()) settings.pointer = "/integrator";
-  if (spec_settings.empty()) return create_integrator(type, settings, scene.render);
-  // A setting given with the name that the integrator refuses: say where it came from.
-  try {
-    return create_integrator(type, settings, scene.render);
-  } catch (const InputError& e) {
-    throw InputError("integrator \"" + spec + "\": " + e.what());
+  std::unique_ptr<Integrator> integrator;
+  if (spec_settings.empty()) {
+    integrator = create_integrator(type, settings, scene.render);
+  } else {
+    // A setting given with the name that the integrator refuses: say where it came from.
+    try {
+      integrator = create_integrator(type, settings, scene.render);
+    } catch (const InputError& e) {
+      throw InputError("integrator \"" + spec + "\": " + e.what());
+    }
   }
+  if (scene.has_media() && !integrator->supports_media()) {
+    throw InputError(options.scene + ": the scene has participating media, which the " + integrator->name() +
+                     " integrator does not render yet (path does)");
+  }
+  return integrator;
 }
 
 int thread_count(const SceneOptions& options) {

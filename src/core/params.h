@@ -3,6 +3,7 @@
 // the reader behind it (src/io) knows the file format, names the file and the place in every
 // error, and has refused keys that the plugin's registry row does not list before create() runs.
 #pragma once
+#include <memory>
 #include <string>
 #include <vector>
 #include "core/image.h"
@@ -12,6 +13,7 @@
 namespace caustica {
 
 class Bsdf;
+class PhaseFunction;
 
 class Params {
  public:
@@ -43,6 +45,8 @@ class Params {
   // Nested BSDF blocks (kept alive by the scene): one, or with `allow_pair` an array of one or
   // two (front and back). The key is required.
   virtual std::vector<const Bsdf*> bsdfs(const std::string& key, bool allow_pair) const = 0;
+  // A nested phase-function block (a medium's); isotropic when the key is absent.
+  virtual std::unique_ptr<PhaseFunction> phase(const std::string& key) const = 0;
   // An error at `key` (empty: the block itself), naming the file and the place in it.
   [[noreturn]] virtual void fail(const std::string& key, const std::string& message) const = 0;
   virtual void warn(const std::string& key, const std::string& message) const = 0;

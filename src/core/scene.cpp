@@ -37,7 +37,8 @@ bool Scene::intersect(const Ray& ray_in, SurfaceHit& hit) const {
   for (int pass = 0; pass < 256; ++pass) {
     if (!intersect_opaque(ray, hit)) return false;
     const float alpha = hit.material->opacity(hit.sp);
-    if (alpha >= 1.0f) {
+    // (A surface bounding media stops every ray: the medium changes there.)
+    if (alpha >= 1.0f || hit.media) {
       hit.t += travelled;
       return true;
     }
@@ -67,6 +68,25 @@ bool Scene::occluded(const Ray& ray) const {
   return intersect(ray, hit);
 }
 
+Color Scene::transmittance(const Ray& ray_in, int32_t medium, Sampler& sampler) const {
+  if (!has_media()) return occluded(ray_in) ? Color(0.0f) : Color(1.0f);
+  Ray ray = ray_in;
+  Color tr(1.0f);
+  for (int crossing = 0; crossing < 256; ++crossing) {
+    SurfaceHit hit;
+    const bool found = intersect(ray, hit);
+    if (medium >= 0) tr *= media[size_t(medium)]->transmittance(ray, found ? hit.t : ray.tmax, sampler);
+    if (!found) return tr;
+    if (!is_medium_boundary(hit) || is_black(tr)) return Color(0.0f);
+    medium = hit.media->entered(ray.dir, hit.n);
+    const Vec3 origin = offset_origin(hit.p, hit.n, ray.dir);
+    const float step = glm::length(origin - ray.origin);
+    ray = Ray{origin, ray.dir, ray.tmax - step};
+    if (!(ray.tmax > 0.0f)) return tr;
+  }
+  return Color(0.0f);
+}
+
 bool Scene::intersect_opaque(const Ray& ray, SurfaceHit& hit) const {
   Hit h;
   if (!accel_->intersect(ray, h)) return false;
@@ -80,6 +100,7 @@ bool Scene::intersect_opaque(const Ray& ray, SurfaceHit& hit) const {
   hit.n = prim.normal_at(hit.p);
   hit.material = materials[prim.material].get();
   hit.light = prim.light;
+  hit.media = prim.media ? &interfaces[prim.media - 1u] : nullptr;
   Vec3 ns = hit.n;
   // dp/du orients anisotropic BSDFs, as Mitsuba's shading frames do; with dp/dv it bends
   // bump-mapped normals.

@@ -6,8 +6,10 @@
 #include "core/bvh.h"
 #include "core/camera.h"
 #include "core/light_sampler.h"
+#include "core/media/medium.h"
 #include "core/lights/light.h"
 #include "core/pixel_filter.h"
+#include "core/sampler.h"
 #include "core/bsdf/bsdf.h"
 #include "core/textures/texture.h"
 
@@ -30,6 +32,8 @@ struct SurfaceHit {
   float t = kInfinity;
   const Bsdf* material = nullptr;
   int32_t light = -1;
+  // The media on the surface's two sides, where it bounds any (else the ray's medium stays).
+  const MediumInterface* media = nullptr;
   Frame frame;      // the shading frame: around the interpolated vertex normal, or n
   ShadingPoint sp;  // texture coordinates
   // A direction that the shading frame and the geometric normal put on different sides: the
@@ -60,6 +64,13 @@ class Scene {
   std::vector<std::string> material_names;
   std::vector<std::unique_ptr<Light>> lights;
   std::vector<ObjectInfo> objects;
+  // Participating media, the pairs of them that surfaces separate (Primitive::media), and the
+  // one the camera sits in (-1: none).
+  std::vector<std::unique_ptr<Medium>> media;
+  std::vector<MediumInterface> interfaces;
+  int32_t camera_medium = -1;
+  // Whether any medium is in use (one declared and named nowhere changes nothing).
+  bool has_media() const { return camera_medium >= 0 || !interfaces.empty(); }
 
   // Builds the ray-casting structure (render.accel) over the primitives and the light sampler
   // (render.light_sampler).
@@ -69,6 +80,12 @@ class Scene {
   bool intersect(const Ray& ray, SurfaceHit& hit) const;
   // Shadow rays: any hit before ray.tmax, masked surfaces passed as intersect() passes them.
   bool occluded(const Ray& ray) const;
+  // A shadow ray through media: the transmittance over [0, ray.tmax] from `medium` on, through
+  // the surfaces that only bound media (null BSDF); zero at any other surface. Without media,
+  // 0 or 1 as occluded() says.
+  Color transmittance(const Ray& ray, int32_t medium, Sampler& sampler) const;
+  // A surface that bounds media and is not there for light (null BSDF): rays pass it.
+  static bool is_medium_boundary(const SurfaceHit& hit) { return hit.media && hit.material->opacity(hit.sp) <= 0.0f; }
   // Chooses a light for a shadow ray from p (shading normal n), by render.light_sampler;
   // null where none can reach p.
   const Light* sample_light(const Vec3& p, const Vec3& n, float u, float& pmf) const {

@@ -71,6 +71,7 @@ struct alignas(64) Primitive {
   uint32_t attributes = kNoAttributes;  // index of the triangle's vertex normals and UVs in the scene
   ShapeKind kind = ShapeKind::Triangle;
   bool flip = false;
+  uint16_t media = 0;  // 1 + its index in Scene::interfaces (the media on its two sides), or 0
 
   static Primitive triangle(const Vec3& a, const Vec3& b, const Vec3& c);
   static Primitive sphere(const Vec3& centre, float radius);

@@ -90,7 +90,7 @@ void Loader::read_filter(const json& j, const std::string& p) {
 
 void Loader::read_camera(const json& j, const std::string& p) {
   r.check_object(j, p, {"type", "position", "look_at", "up", "fov", "fov_axis", "mirror", "aperture_radius", "focus_distance",
-                        "view_width", "view_height"});
+                        "view_width", "view_height", "medium"});
   const std::string type = j.contains("type") ? r.string(j["type"], child(p, "type")) : "perspective";
   if (type != "perspective" && type != "orthographic") {
     r.fail(child(p, "type"), "unknown camera type \"" + type + "\" (known: perspective, orthographic)");

@@ -1,6 +1,7 @@
 // A plugin's JSON block as core's Params.
 #include "io/json_params.h"
 #include <filesystem>
+#include "core/media/registry.h"
 #include "io/bsdf_reader.h"
 #include "io/image_io.h"
 #include "io/texture_reader.h"
@@ -145,6 +146,13 @@ std::vector<const Bsdf*> JsonParams::bsdfs(const std::string& key, bool allow_pa
     out.push_back(ctx_.nested.back().get());
   }
   return out;
+}
+
+std::unique_ptr<PhaseFunction> JsonParams::phase(const std::string& key) const {
+  if (!has(key)) return std::make_unique<IsotropicPhase>();
+  const std::string ip = at(key);
+  const PhasePlugin& row = plugin_row(r_, m_[key], ip, phase_plugins(), "phase function");
+  return row.create(JsonParams(ctx_, m_[key], ip));
 }
 
 void JsonParams::fail(const std::string& key, const std::string& message) const {

@@ -47,6 +47,7 @@ class JsonParams final : public Params {
   std::string file(const std::string& key, const std::string& what) const override;
   UvTransform uv_transform(const std::string& key) const override;
   std::vector<const Bsdf*> bsdfs(const std::string& key, bool allow_pair) const override;
+  std::unique_ptr<PhaseFunction> phase(const std::string& key) const override;
   [[noreturn]] void fail(const std::string& key, const std::string& message) const override;
   void warn(const std::string& key, const std::string& message) const override;
 

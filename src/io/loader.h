@@ -105,6 +105,14 @@ struct Loader {
   std::map<const Texture*, std::string> texture_places_{};
 
   void read_light(const json& j, const std::string& p);
+  // Participating media (the "media" block, by name), and the references to them: an object's
+  // "interior" and "exterior", the camera's "medium" (medium_reader.cpp).
+  void read_media(const json& j, const std::string& p);
+  int32_t medium_ref(const json& obj, const std::string& p, const char* key);
+  // The object's media interface (Primitive::media), 0 where it names none.
+  uint16_t media_interface(const json& obj, const std::string& p);
+  std::map<std::string, int32_t> medium_ids_{};
+  std::map<std::pair<int32_t, int32_t>, uint16_t> interface_ids_{};
   // A light's or an emissive object's "sampling_weight" (positive).
   float sampling_weight(const json& j, const std::string& p) const;
 

@@ -7,6 +7,7 @@
 #include <sstream>
 #include "core/bsdf/registry.h"
 #include "core/lights/registry.h"
+#include "core/media/registry.h"
 #include "core/textures/mesh_attribute.h"
 #include "core/textures/registry.h"
 #include "io/bsdf_reader.h"
@@ -16,10 +17,12 @@
 namespace caustica::scene_loading {
 
 void Loader::load(const json& doc) {
-  r.check_object(doc, "", {"camera", "render", "integrator", "materials", "objects", "lights"});
+  r.check_object(doc, "", {"camera", "render", "integrator", "materials", "objects", "lights", "media"});
   if (doc.contains("render")) read_render(doc["render"], "/render");
   apply_overrides();
+  if (doc.contains("media")) read_media(doc["media"], "/media");
   read_camera(r.require(doc, "", "camera"), "/camera");
+  if (doc["camera"].contains("medium")) scene().camera_medium = medium_ref(doc["camera"], "/camera", "medium");
   if (doc.contains("integrator")) read_integrator(doc["integrator"], "/integrator");
   read_materials(r.require(doc, "", "materials"), "/materials");
   const json& objects = r.require(doc, "", "objects");
@@ -159,7 +162,8 @@ void list_family(std::vector<PluginListing>& out, const char* family, const std:
   for (const Plugin& p : table) {
     PluginListing l{family, p.name, mitsuba, {}};
     if constexpr (std::is_same_v<Plugin, BsdfPlugin> || std::is_same_v<Plugin, TexturePlugin> ||
-                  std::is_same_v<Plugin, LightPlugin>) {
+                  std::is_same_v<Plugin, LightPlugin> || std::is_same_v<Plugin, MediumPlugin> ||
+                  std::is_same_v<Plugin, PhasePlugin>) {
       l.mitsuba = p.mitsuba;
     }
     l.keys.assign(p.keys.begin(), p.keys.end());
@@ -173,6 +177,8 @@ std::vector<PluginListing> scene_plugins() {
   list_family(out, "bsdf", bsdf_plugins(), true);
   list_family(out, "texture", texture_plugins(), true);
   list_family(out, "light", light_plugins(), true);
+  list_family(out, "medium", medium_plugins(), true);
+  list_family(out, "phase", phase_plugins(), true);
   // Our shapes are not Mitsuba's: its shapes are translated into these.
   list_family(out, "shape", scene_loading::shape_plugins(), false);
   return out;

@@ -20,7 +20,8 @@ const std::vector<ShapePlugin>& shape_plugins() {
 }
 
 void Loader::read_object(const json& j, const std::string& p) {
-  const ShapePlugin& row = plugin_row(r, j, p, shape_plugins(), "object", {"name", "material", "flip_normal", "sampling_weight"});
+  const ShapePlugin& row = plugin_row(r, j, p, shape_plugins(), "object",
+                                      {"name", "material", "flip_normal", "sampling_weight", "interior", "exterior"});
   std::vector<Primitive> shapes;
   if ((this->*row.read)(j, p, shapes)) return;
   if (j.contains("name")) r.string(j["name"], child(p, "name"));
@@ -74,9 +75,11 @@ void Loader::add_object(std::vector<Primitive> shapes, uint32_t mat, const json&
   check_reach(b.hi, p);
   check_reach(b.lo, p);
   int32_t light = -1;
+  const uint16_t media = media_interface(j, p);
   for (Primitive& s : shapes) {
     s.material = mat;
     s.flip = flip;
+    s.media = media;
   }
   if (!emission_[mat].is_black()) {
     light = static_cast<int32_t>(scene().lights.size());

@@ -5,10 +5,11 @@
 
 namespace caustica {
 
-Color estimate_direct(const Scene& scene, const SurfaceHit& hit, const Vec3& wo, Sampler& sampler, float mis_ratio) {
+Color estimate_direct(const Scene& scene, const SurfaceHit& hit, const Vec3& wo, Sampler& sampler, float mis_ratio,
+                      int32_t medium) {
   const float u_light = sampler.next1d();
   const Vec2 u = sampler.next2d();
-  return estimate_direct(scene, hit, wo, u_light, u, sampler, mis_ratio);
+  return estimate_direct(scene, hit, wo, u_light, u, sampler, mis_ratio, medium);
 }
 
 StratifiedDirect::StratifiedDirect(Sampler& sampler, int n) {
@@ -35,7 +36,7 @@ Color StratifiedDirect::estimate(const Scene& scene, const SurfaceHit& hit, cons
 }
 
 Color estimate_direct(const Scene& scene, const SurfaceHit& hit, const Vec3& wo, float u_light, const Vec2& u,
-                      Sampler& sampler, float mis_ratio) {
+                      Sampler& sampler, float mis_ratio, int32_t medium) {
   float pmf = 0.0f;
   const Light* light = scene.sample_light(hit.p, hit.frame.n, u_light, pmf);
   if (!light || pmf <= 0.0f) return Color(0.0f);
@@ -46,10 +47,37 @@ Color estimate_direct(const Scene& scene, const SurfaceHit& hit, const Vec3& wo,
   const Color f = hit.material->eval(wo_l, wi_l, hit.sp);
   if (is_black(f)) return Color(0.0f);
   ++sampler.rays;
-  if (scene.occluded(spawn_ray_to(hit.p, hit.n, ls.p, ls.n))) return Color(0.0f);
+  const Ray shadow = spawn_ray_to(hit.p, hit.n, ls.p, ls.n);
+  Color tr(1.0f);
+  if (scene.has_media()) {
+    tr = scene.transmittance(shadow, hit.media ? hit.media->entered(ls.wi, hit.n) : medium, sampler);
+    if (is_black(tr)) return Color(0.0f);
+  } else if (scene.occluded(shadow)) {
+    return Color(0.0f);
+  }
   float w = 1.0f;
   if (mis_ratio > 0.0f && ls.pdf > 0.0f) w = mis_weight(pmf * ls.pdf, mis_ratio * hit.material->pdf(wo_l, wi_l, hit.sp));
-  return f * ls.weight * (w * std::abs(wi_l.z) / pmf);
+  return tr * f * ls.weight * (w * std::abs(wi_l.z) / pmf);
+}
+
+Color estimate_direct_in_medium(const Scene& scene, const Vec3& p, const Vec3& wo, int32_t medium, Sampler& sampler,
+                                float mis_ratio) {
+  const float u_light = sampler.next1d();
+  const Vec2 u = sampler.next2d();
+  float pmf = 0.0f;
+  const Light* light = scene.sample_light(p, Vec3(0.0f), u_light, pmf);  // (no normal)
+  if (!light || pmf <= 0.0f) return Color(0.0f);
+  LightSample ls;
+  if (!light->sample_li(p, u, ls)) return Color(0.0f);
+  const PhaseFunction& phase = scene.media[size_t(medium)]->phase();
+  const float f = phase.eval(wo, ls.wi);
+  if (!(f > 0.0f)) return Color(0.0f);
+  ++sampler.rays;
+  const Color tr = scene.transmittance(spawn_ray_to(p, Vec3(0.0f), ls.p, ls.n), medium, sampler);
+  if (is_black(tr)) return Color(0.0f);
+  float w = 1.0f;
+  if (mis_ratio > 0.0f && ls.pdf > 0.0f) w = mis_weight(pmf * ls.pdf, mis_ratio * f);
+  return tr * ls.weight * (f * w / pmf);
 }
 
 Color emission_mis(const Scene& scene, const SurfaceHit& hit, const Color& Le, const BsdfVertex& from) {

@@ -10,11 +10,16 @@ namespace caustica {
 // weighted by the power heuristic against BSDF sampling that takes mis_ratio samples per
 // light sample (and must count the emission it hits with emission_mis / escaped_mis, its
 // density scaled by the same ratio); 0 means no MIS.
+// In a scene with media the shadow ray passes media boundaries and takes the transmittance,
+// starting in `medium` (the ray's) unless the hit's surface bounds media itself.
 Color estimate_direct(const Scene& scene, const SurfaceHit& hit, const Vec3& wo, Sampler& sampler,
-                      float mis_ratio = 0.0f);
+                      float mis_ratio = 0.0f, int32_t medium = -1);
 // The same with the light chosen by u_light and its point by u.
 Color estimate_direct(const Scene& scene, const SurfaceHit& hit, const Vec3& wo, float u_light, const Vec2& u,
-                      Sampler& sampler, float mis_ratio);
+                      Sampler& sampler, float mis_ratio, int32_t medium = -1);
+// The same at a scattering point p inside `medium`, its phase function in place of a BSDF.
+Color estimate_direct_in_medium(const Scene& scene, const Vec3& p, const Vec3& wo, int32_t medium, Sampler& sampler,
+                                float mis_ratio);
 
 // n light samples at one point, stratified: the light's choice over n strata of [0, 1), the
 // point on it over an sx x sy grid of [0, 1)^2 (the remainder unstratified), the two paired at

@@ -16,6 +16,7 @@ Color PathIntegrator::Li(const Ray& camera_ray, const Scene& scene, Sampler& sam
 }
 
 Color trace_path(const Ray& camera_ray, const Scene& scene, Sampler& sampler, const MonteCarloSettings& settings) {
+  if (scene.has_media()) return trace_volume_path(camera_ray, scene, sampler, settings);
   EyePath path{Color(0.0f), Color(1.0f), BsdfVertex{}, settings.max_depth, settings.hide_emitters};
   Ray ray = camera_ray;
   for (int depth = 0;; ++depth) {
@@ -33,6 +34,79 @@ Color trace_path(const Ray& camera_ray, const Scene& scene, Sampler& sampler, co
     }
   }
   return path.L;
+}
+
+Color trace_volume_path(const Ray& camera_ray, const Scene& scene, Sampler& sampler, const MonteCarloSettings& settings) {
+  // The path's throughput is beta / mean(r): beta the product of its factors, r per channel the
+  // product of the densities of its medium events had that channel been sampled (the hero
+  // channel samples them all: spectral MIS over the whole path).
+  Color L(0.0f), beta(1.0f), r(1.0f);
+  auto throughput = [&] { return beta * (3.0f / (r.x + r.y + r.z)); };
+  const int hero = std::min(int(sampler.next1d() * 3.0f), 2);
+  BsdfVertex from;  // the camera: emission counts in full
+  int32_t medium = scene.camera_medium;
+  Ray ray = camera_ray;
+  int depth = 0;
+  // Russian roulette after rr_depth vertices, as trace_path.
+  auto survives = [&] {
+    if (depth < settings.rr_depth) return true;
+    const float survive = std::min(1.0f, max_component(throughput()));
+    if (survive <= 0.0f || sampler.next1d() >= survive) return false;
+    beta /= survive;
+    return true;
+  };
+  // (Bounded: a ray crossing boundaries without end, e.g. along a degenerate seam, stops.)
+  for (int segment = 0; segment < 4 * (settings.max_depth + 1) + 256; ++segment) {
+    SurfaceHit hit;
+    ++sampler.rays;
+    const bool found = scene.intersect(ray, hit);
+    if (medium >= 0) {
+      const MediumEvent event = scene.media[size_t(medium)]->sample(ray, found ? hit.t : kInfinity, hero, sampler);
+      beta *= event.weight;
+      r *= event.pdf;
+      if (is_black(beta) || !(r[hero] > 0.0f)) break;
+      if (event.scattered) {
+        // A medium vertex: direct light by a shadow ray, the path on by the phase function.
+        if (depth >= settings.max_depth) break;
+        const Vec3 p = ray.at(event.t), wo = -ray.dir;
+        L += throughput() * estimate_direct_in_medium(scene, p, wo, medium, sampler, 1.0f);
+        Vec3 wi;
+        const float pdf = scene.media[size_t(medium)]->phase().sample(wo, sampler.next2d(), wi);
+        if (!(pdf > 0.0f)) break;  // (the weight f / pdf is 1)
+        from = BsdfVertex{false, pdf, p, Vec3(0.0f)};
+        ray = Ray{p, wi, kInfinity};
+        ++depth;
+        if (!survives()) break;
+        continue;
+      }
+    }
+    const bool visible = !(settings.hide_emitters && depth == 0);
+    if (!found) {
+      if (visible) L += throughput() * escaped_mis(scene, ray.dir, from);
+      break;
+    }
+    if (Scene::is_medium_boundary(hit)) {  // not a vertex: the ray goes on in the other medium
+      medium = hit.media->entered(ray.dir, hit.n);
+      ray = Ray{offset_origin(hit.p, hit.n, ray.dir), ray.dir, kInfinity};
+      continue;
+    }
+    if (visible) L += throughput() * emission_mis(scene, hit, scene.emitted(hit, hit.frame.to_local(-ray.dir)), from);
+    if (depth >= settings.max_depth) break;
+    const Vec3 wo = -ray.dir;
+    if (!hit.material->is_specular()) L += throughput() * estimate_direct(scene, hit, wo, sampler, 1.0f, medium);
+    BsdfSample bs;
+    const Vec2 u = sampler.next2d();
+    if (!hit.material->sample(hit.frame.to_local(wo), u, sampler.next1d(), bs, hit.sp)) break;
+    const Vec3 wi = hit.frame.to_world(bs.wi);
+    if (hit.leaks(wi)) break;
+    beta *= bs.weight;
+    from = BsdfVertex{bs.delta, bs.pdf, hit.p, hit.frame.n};
+    if (hit.media) medium = hit.media->entered(wi, hit.n);
+    ray = spawn_ray(hit.p, hit.n, wi);
+    ++depth;
+    if (!survives()) break;
+  }
+  return L;
 }
 
 std::string PathIntegrator::describe() const {

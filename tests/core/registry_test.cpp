@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 #include "core/bsdf/registry.h"
 #include "core/lights/registry.h"
+#include "core/media/registry.h"
 #include "core/textures/registry.h"
 #include "io/scene_loader.h"
 #include "support/errors.h"
@@ -42,6 +43,10 @@ TEST_CASE("registries: the docs name every registered plugin", "[core][registry]
   check_documented(texture_plugins());
   REQUIRE(light_plugins().size() >= 5);
   check_documented(light_plugins());
+  REQUIRE(medium_plugins().size() >= 1);
+  check_documented(medium_plugins());
+  REQUIRE(phase_plugins().size() >= 2);
+  check_documented(phase_plugins());
   // Shapes: every row of the table in scene-format.md (their Mitsuba names are translated).
   const std::string format = doc("scene-format.md");
   for (const PluginListing& p : scene_plugins()) {

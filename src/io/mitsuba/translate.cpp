@@ -50,6 +50,9 @@ TranslatedScene Translator::run() {
     } else if (o.tag == "bsdf" || o.tag == "texture") {
       // Materialised where a shape uses it; an unused one is checked all the same.
       if (o.tag == "bsdf") material_name(o, nullptr);
+    } else if (o.tag == "medium") {
+      // Declared for shapes and the sensor to refer to: translated there (one nothing refers
+      // to would make a scene of media for nothing).
     } else if ((o.tag == "sampler" || o.tag == "film" || o.tag == "rfilter") && !o.id.empty()) {
       // Declared with an id for a sensor to refer to: read there.
     } else {
@@ -68,6 +71,7 @@ TranslatedScene Translator::run() {
     doc["render"]["spp"] = integer(*max_passes_);
     note("/render/spp", max_passes_->where);
   }
+  if (!camera_medium_.empty() && doc.contains("camera")) doc["camera"]["medium"] = camera_medium_;
   if (!have_integrator) {
     doc["integrator"] = {{"type", "path"}, {"rr_depth", 5}};
     doc["render"]["max_depth"] = kUnlimitedDepth;

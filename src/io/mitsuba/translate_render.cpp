@@ -114,7 +114,7 @@ void Translator::render_settings(const XmlObject& o) {
   for (const XmlChild& c : o.children) {
     if (c.object->tag == "film") film(*c.object);
     else if (c.object->tag == "sampler") sampler(*c.object);
-    else if (c.object->tag == "medium") unsupported(*c.object, "medium", {}, "ignored (the camera sees without it)");
+    else if (c.object->tag == "medium") camera_medium_ = medium(*c.object);
     else bad_child(o, c);
   }
 }
@@ -272,7 +272,7 @@ void Translator::integrator(const XmlObject& o0) {
   note("/integrator", o->where);
   json integ;
   if (o->type == "path" || o->type == "volpath" || o->type == "volpathmis") {
-    if (o->type != "path") warn(o->where, "\"" + o->type + "\" without media is the path tracer");
+    // (volpath and volpathmis: our path tracer renders media.)
     integ = {{"type", "path"}};
     doc["render"]["max_depth"] = depth(props.get("max_depth"), -1);
     const XmlProperty* rr = props.get("rr_depth");

@@ -39,10 +39,11 @@ void Translator::shape(const XmlObject& o, const glm::dmat4& parent) {
   note(p, o.where);
   const XmlObject* bsdf_obj = nullptr;
   const XmlObject* area = nullptr;
+  std::vector<std::pair<std::string, const XmlObject*>> media;  // ("interior" or "exterior", the medium)
   for (const XmlChild& c : o.children) {
     if (c.object->tag == "bsdf" && !bsdf_obj) bsdf_obj = c.object;
     else if (c.object->tag == "emitter" && !area) area = c.object;
-    else if (c.object->tag == "medium") unsupported(*c.object, "medium", {}, "ignored (the shape is rendered without it)");
+    else if (c.object->tag == "medium" && (c.name == "interior" || c.name == "exterior")) media.emplace_back(c.name, c.object);
     else if (c.object->tag == "subsurface") unsupported(*c.object, "subsurface", {}, "ignored (the shape's BSDF alone renders it)");
     else bad_child(o, c);
   }
@@ -81,6 +82,12 @@ void Translator::shape(const XmlObject& o, const glm::dmat4& parent) {
     material = name;
   }
   json obj = {{"name", o.id.empty() ? o.type : o.id}, {"material", material}};
+  for (const auto& [side, m] : media) {
+    const std::string name = medium(*m);
+    if (name.empty()) continue;
+    obj[side] = name;
+    note(p + "/" + side, m->where);
+  }
   note(p + "/material", bsdf_obj ? bsdf_obj->where : o.where);
   if (o.type == "obj" && !bsdf_obj && !area) {
     // An OBJ with an .mtl and no BSDF in the scene keeps its own materials (Mitsuba would

@@ -152,6 +152,12 @@ class Translator {
 
   // ---------------------------------------------------------------- emitters
   void emitter(const XmlObject& o);
+  // ---------------------------------------------------------------- media
+  // The name in "media" of a medium object (made once per object); "" where it is left out
+  // (unsupported, with --ignore-unsupported).
+  std::string medium(const XmlObject& o);
+  std::map<const XmlObject*, std::string> media_;
+  std::string camera_medium_;  // the sensor's
 };
 
 }  // namespace caustica::mitsuba_translation

@@ -1,0 +1,48 @@
+// Participating media: what fills the space between surfaces (fog, smoke, murky water).
+// A ray's segment through a medium either passes (transmittance) or scatters at a distance
+// sampled along it (free-flight sampling); a scattering point takes the medium's phase
+// function as a surface takes its BSDF. Colours are RGB: a chromatic extinction is sampled by
+// one channel (the path's hero channel, chosen once per path) and each event reports the
+// density every channel would have given it, so that the path divides by the mean over the
+// channels of its whole density (spectral MIS, balance heuristic, over the path: the weights
+// stay within 3 however many events it has, where per-event weights would multiply).
+#pragma once
+#include <memory>
+#include "core/math.h"
+#include "core/media/phase.h"
+#include "core/sampler.h"
+
+namespace caustica {
+
+// What free-flight sampling found along [0, tmax] of a ray.
+struct MediumEvent {
+  bool scattered = false;  // at t (< tmax); else the ray reaches tmax
+  float t = 0.0f;
+  // The path throughput's factor before the division by its density: sigma_s * Tr(t) where it
+  // scattered, Tr(tmax) where it passed.
+  Color weight{1.0f};
+  // Per channel, the density of this event had that channel been the one sampled: sigma_t *
+  // Tr(t) (scattered), Tr(tmax) (passed); 1 for events every channel takes alike.
+  Color pdf{1.0f};
+};
+
+class Medium {
+ public:
+  virtual ~Medium() = default;
+  // Free-flight sampling along ray (unit direction) over [0, tmax] (tmax may be infinite), by
+  // channel `channel`'s extinction (0, 1 or 2).
+  virtual MediumEvent sample(const Ray& ray, float tmax, int channel, Sampler& sampler) const = 0;
+  // Transmittance over [0, tmax] (an unbiased estimate where the medium is not homogeneous).
+  virtual Color transmittance(const Ray& ray, float tmax, Sampler& sampler) const = 0;
+  virtual const PhaseFunction& phase() const = 0;
+};
+
+// Which medium lies on each side of a surface: indices into Scene::media, -1 for none
+// (vacuum). Interior is the side the geometric normal points away from.
+struct MediumInterface {
+  int32_t interior = -1, exterior = -1;
+  // The medium a ray in direction dir enters through a surface of geometric normal n.
+  int32_t entered(const Vec3& dir, const Vec3& n) const { return glm::dot(dir, n) < 0.0f ? interior : exterior; }
+};
+
+}  // namespace caustica

@@ -1,0 +1,29 @@
+// The medium family's table and the phase-function family's (a medium's nested `phase`): name,
+// whether Mitsuba knows it by that name, create, keys. As the other families' tables, they
+// feed the scene readers, error messages, the Mitsuba translator and `caustica plugins`.
+#pragma once
+#include <memory>
+#include <vector>
+#include "core/media/medium.h"
+#include "core/media/phase.h"
+#include "core/params.h"
+
+namespace caustica {
+
+struct MediumPlugin {
+  const char* name;
+  bool mitsuba;
+  std::unique_ptr<Medium> (*create)(const Params&);
+  std::vector<const char*> keys;  // every key besides "type"
+};
+const std::vector<MediumPlugin>& medium_plugins();
+
+struct PhasePlugin {
+  const char* name;
+  bool mitsuba;
+  std::unique_ptr<PhaseFunction> (*create)(const Params&);
+  std::vector<const char*> keys;
+};
+const std::vector<PhasePlugin>& phase_plugins();
+
+}  // namespace caustica

@@ -1,0 +1,124 @@
+// Participating media: phase functions against their densities (chi-square), the homogeneous
+// medium's transmittance and free-flight sampling against their integrals.
+#include <catch2/catch.hpp>
+#include <cmath>
+#include "core/media/homogeneous.h"
+#include "core/media/phase.h"
+#include "support/chi2.h"
+
+using namespace caustica;
+
+namespace {
+constexpr int kChi2Tests = 6;
+const double kAlpha = test::sidak_alpha(0.01, kChi2Tests);
+}  // namespace
+
+TEST_CASE("media: Henyey-Greenstein and isotropic sampling match their densities (chi-square), and HG's mean "
+          "cosine is g",
+          "[core][media][chi2]") {
+  const Vec3 wo = glm::normalize(Vec3(0.3f, -0.5f, 0.8f));
+  auto check = [&](const PhaseFunction& phase, uint64_t seed) {
+    constexpr int n = 200000;
+    test::SphereHistogram hist(40, 40);
+    Rng rng(seed);
+    double mean_cos = 0, worst_pdf = 0;
+    for (int i = 0; i < n; ++i) {
+      Vec3 wi;
+      const Vec2 u(rng.next_float(), rng.next_float());
+      const float pdf = phase.sample(wo, u, wi);
+      hist.add(wi);
+      mean_cos += double(glm::dot(-wo, wi));
+      worst_pdf = std::max(worst_pdf, std::abs(double(pdf) / double(phase.eval(wo, wi)) - 1.0));
+    }
+    const auto expected = hist.expected([&](const Vec3& w) { return double(phase.eval(wo, w)); }, n);
+    INFO("expected mass " << test::sum(expected) / n);
+    CHECK(test::sum(expected) / n == Approx(1.0).epsilon(0.002));
+    const test::Chi2Result r = test::chi2_test(hist.counts(), expected);
+    INFO(r.message);
+    CHECK(r.accepts(kAlpha));
+    CHECK(worst_pdf < 1e-4);  // sample() returns the density eval() gives
+    CHECK(mean_cos / n == Approx(phase.mean_cosine()).margin(0.006));
+  };
+  uint64_t seed = 1;
+  for (float g : {-0.8f, -0.3f, 0.0f, 0.5f, 0.85f}) {
+    INFO("g " << g);
+    check(HenyeyGreenstein(g), seed++);
+  }
+  check(IsotropicPhase(), seed++);
+}
+
+TEST_CASE("media: a homogeneous medium's transmittance is Beer-Lambert's, and free-flight sampling's weights average "
+          "to the transmittance (passing) and to the scattered part albedo (1 - Tr) (scattering), per channel",
+          "[core][media]") {
+  // Chromatic: each channel's distance density differs, so the one-sample MIS over channels is
+  // what keeps the weights right.
+  const Color sigma_t(0.5f, 1.0f, 2.0f), albedo(0.9f, 0.5f, 0.2f);
+  const HomogeneousMedium m(sigma_t, albedo, std::make_unique<IsotropicPhase>());
+  const Ray ray{Vec3(0.0f), Vec3(0.0f, 0.0f, 1.0f), kInfinity};
+  Sampler sampler(7);
+  const float d = 1.3f;
+  const Color tr = m.transmittance(ray, d, sampler);
+  for (int c = 0; c < 3; ++c) CHECK(tr[c] == Approx(std::exp(-sigma_t[c] * d)).epsilon(1e-6));
+  constexpr int n = 400000;
+  glm::dvec3 passed(0.0), scattered(0.0), scattered_t(0.0);
+  std::vector<double> observed(11, 0.0);  // ten distance cells over [0, d) and the passing
+  for (int i = 0; i < n; ++i) {
+    // The hero channel at random: one event's estimate is its weight over the mean density.
+    const MediumEvent e = m.sample(ray, d, int(sampler.next1d() * 3.0f) % 3, sampler);
+    const glm::dvec3 w = glm::dvec3(e.weight) * (3.0 / (double(e.pdf.x) + e.pdf.y + e.pdf.z));
+    if (e.scattered) {
+      REQUIRE(e.t >= 0.0f);
+      REQUIRE(e.t < d);
+      scattered += w;
+      scattered_t += w * double(e.t);
+      observed[size_t(std::min(9, int(e.t / d * 10.0f)))] += 1;
+    } else {
+      CHECK(e.t == d);
+      passed += w;
+      observed[10] += 1;
+    }
+  }
+  for (int c = 0; c < 3; ++c) {
+    const double s = sigma_t[c], T = std::exp(-s * d);
+    INFO("channel " << c);
+    CHECK(passed[c] / n == Approx(T).epsilon(0.01));
+    CHECK(scattered[c] / n == Approx(albedo[c] * (1.0 - T)).epsilon(0.01));
+    // The first moment of the scattering distance: integral of t sigma_s e^(-s t) over [0, d].
+    const double moment = albedo[c] * (1.0 - T * (1.0 + s * d)) / s;
+    CHECK(scattered_t[c] / n == Approx(moment).epsilon(0.015));
+  }
+  // The distances' distribution: the mean over channels of each one's exponential.
+  std::vector<double> expected(11, 0.0);
+  for (int c = 0; c < 3; ++c) {
+    const double s = sigma_t[c];
+    for (int k = 0; k < 10; ++k)
+      expected[size_t(k)] += n / 3.0 * (std::exp(-s * d * k / 10.0) - std::exp(-s * d * (k + 1) / 10.0));
+    expected[10] += n / 3.0 * std::exp(-s * d);
+  }
+  const test::Chi2Result r = test::chi2_test(observed, expected);
+  INFO(r.message);
+  CHECK(r.accepts(test::sidak_alpha(0.01, 1)));
+}
+
+TEST_CASE("media: an extinction of zero in a channel passes that channel, and a medium that scatters nothing "
+          "passes every segment with its transmittance",
+          "[core][media]") {
+  // sigma_t 0 in red: red always passes, its exponential never ends within the segment.
+  const HomogeneousMedium m(Color(0.0f, 1.0f, 1.0f), Color(0.5f), std::make_unique<IsotropicPhase>());
+  const Ray ray{Vec3(0.0f), Vec3(1.0f, 0.0f, 0.0f), kInfinity};
+  Sampler sampler(3);
+  constexpr int n = 200000;
+  glm::dvec3 passed(0.0);
+  for (int i = 0; i < n; ++i) {
+    const MediumEvent e = m.sample(ray, 2.0f, i % 3, sampler);
+    if (i % 3 == 0) CHECK_FALSE(e.scattered);
+    if (!e.scattered) passed += glm::dvec3(e.weight) * (3.0 / (double(e.pdf.x) + e.pdf.y + e.pdf.z));
+  }
+  CHECK(passed.x / n == Approx(1.0).epsilon(0.01));
+  CHECK(passed.y / n == Approx(std::exp(-2.0)).epsilon(0.01));
+  const HomogeneousMedium ink(Color(0.5f, 1.0f, 2.0f), Color(0.0f), std::make_unique<IsotropicPhase>());
+  const MediumEvent e = ink.sample(ray, 2.0f, 2, sampler);
+  CHECK_FALSE(e.scattered);
+  CHECK(e.pdf == Color(1.0f));
+  CHECK(e.weight.z == Approx(std::exp(-4.0)));
+}

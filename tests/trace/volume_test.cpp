@@ -1,0 +1,117 @@
+// Path tracing through participating media against analytic results: a furnace filled with a
+// scattering medium, transmittance through an absorbing slab for camera and shadow rays, and
+// the readers' and integrators' refusals.
+#include <catch2/catch.hpp>
+#include "io/scene_loader.h"
+#include "support/errors.h"
+#include "support/render_util.h"
+#include "support/run.h"
+#include "support/temp_dir.h"
+
+using namespace caustica;
+using test::region_mean;
+using test::render_text;
+
+namespace {
+// The camera at the centre of a closed black shell of radiance 1 (normals flipped inward) in a
+// medium of albedo 1: the radiance is 1 everywhere, whatever the medium scatters (white
+// furnace). `fog` is the medium block; `inner` adds a null sphere of radius 1.2 holding the
+// medium, vacuum outside it; without it the camera's medium fills the shell.
+std::string furnace_in_medium(const std::string& fog, bool inner) {
+  std::string objects =
+      R"({"type": "sphere", "center": [0.1, -0.2, 0.1], "radius": 2, "material": "shell", "flip_normal": true})";
+  if (inner) objects += R"(, {"type": "sphere", "center": [0, 0, 0], "radius": 1.2, "material": "boundary", "interior": "fog"})";
+  return R"({"camera": {"position": [0, 0, 0], "look_at": [0, 0, 1], "up": [0, 1, 0], "fov": 90, "medium": "fog"},
+    "render": {"max_depth": 1000},
+    "media": {"fog": )" + fog + R"(},
+    "materials": {"shell": {"type": "diffuse", "albedo": 0, "emission": [1, 1, 1]}, "boundary": {"type": "null"}},
+    "objects": [)" + objects + "]}";
+}
+
+// An absorbing slab (null boundaries at z = 1 and z = 3, normals outward) between the camera
+// and an emitter of radiance 1: the pixels read exp(-2 sigma_t).
+const char* kSlab = R"({"camera": {"position": [0, 0, 0], "look_at": [0, 0, 1], "up": [0, 1, 0], "fov": 2},
+  "media": {"ink": {"type": "homogeneous", "sigma_t": [0.2, 0.5, 1.0], "albedo": 0}},
+  "materials": {"light": {"type": "diffuse", "albedo": 0, "emission": [1, 1, 1]}, "boundary": {"type": "null"}},
+  "objects": [{"type": "quad", "origin": [-5, -5, 1], "edge1": [0, 10, 0], "edge2": [10, 0, 0], "material": "boundary", "interior": "ink"},
+              {"type": "quad", "origin": [-5, -5, 3], "edge1": [10, 0, 0], "edge2": [0, 10, 0], "material": "boundary", "interior": "ink"},
+              {"type": "quad", "origin": [-5, -5, 5], "edge1": [0, 10, 0], "edge2": [10, 0, 0], "material": "light"}]})";
+
+// A diffuse floor lit by a point light 4 above it through an absorbing slab from y = 3.2 to 3.8
+// (only the shadow rays cross it), seen from straight above at height 3.
+const char* kShadowSlab = R"({"camera": {"position": [0, 3, 0], "look_at": [0, 0, 0], "up": [0, 0, 1], "fov": 2},
+  "media": {"ink": {"type": "homogeneous", "sigma_a": [0.5, 1.0, 2.0], "sigma_s": 0}},
+  "materials": {"floor": {"type": "diffuse", "reflectance": 0.5}, "boundary": {"type": "null"}},
+  "objects": [{"type": "quad", "origin": [-50, 0, -50], "edge1": [0, 0, 100], "edge2": [100, 0, 0], "material": "floor"},
+              {"type": "quad", "origin": [-50, 3.2, -50], "edge1": [100, 0, 0], "edge2": [0, 0, 100], "material": "boundary", "interior": "ink"},
+              {"type": "quad", "origin": [-50, 3.8, -50], "edge1": [0, 0, 100], "edge2": [100, 0, 0], "material": "boundary", "interior": "ink"}],
+  "lights": [{"type": "point", "position": [0, 4, 0], "intensity": [1, 1, 1]}]})";
+}  // namespace
+
+TEST_CASE("path through media: a white furnace filled with a scattering medium reads the shell's radiance",
+          "[trace][media][furnace]") {
+  // Chromatic extinction and forward scattering; the medium filling the shell, and held by a
+  // null sphere inside it.
+  for (const bool inner : {false, true}) {
+    for (const char* fog : {R"({"type": "homogeneous", "sigma_t": [0.4, 1.0, 2.5], "albedo": 1, "phase": {"type": "hg", "g": 0.6}})",
+                            R"({"type": "homogeneous", "sigma_a": 0, "sigma_s": 1.5})"}) {
+      INFO((inner ? "inside a null sphere: " : "filling the shell: ") << fog);
+      const auto r = render_text(furnace_in_medium(fog, inner), "path", "{}", 16, 24, 24);
+      const Color mean = r.image.mean();
+      for (int c = 0; c < 3; ++c) CHECK(mean[c] == Approx(1.0).epsilon(0.015));
+      for (int gy = 0; gy < 2; ++gy)
+        for (int gx = 0; gx < 2; ++gx) {
+          const glm::dvec3 m = region_mean(r.image, gx * 12, gy * 12, gx * 12 + 12, gy * 12 + 12);
+          CHECK((m.x + m.y + m.z) / 3.0 == Approx(1.0).epsilon(0.03));
+        }
+      CHECK(r.stats.bad_samples == 0);
+    }
+  }
+}
+
+TEST_CASE("path through media: camera rays through an absorbing slab read exp(-sigma_t d)", "[trace][media]") {
+  // (A medium that scatters nothing is passed with its transmittance: no noise.)
+  const Color mean = render_text(kSlab, "path", "{}", 4, 8, 8).image.mean();
+  const double sigma[3] = {0.2, 0.5, 1.0};
+  for (int c = 0; c < 3; ++c) CHECK(mean[c] == Approx(std::exp(-2.0 * sigma[c])).epsilon(0.001));
+}
+
+TEST_CASE("path through media: shadow rays through an absorbing slab take its transmittance", "[trace][media]") {
+  // L = albedo / pi * I / d^2 * exp(-sigma_a * 0.6), the light 4 above the floor's centre.
+  const Color mean = render_text(kShadowSlab, "path", "{}", 4, 8, 8).image.mean();
+  const double sigma[3] = {0.5, 1.0, 2.0};
+  for (int c = 0; c < 3; ++c) CHECK(mean[c] == Approx(0.5 / double(kPi) / 16.0 * std::exp(-0.6 * sigma[c])).epsilon(0.01));
+}
+
+TEST_CASE("media: bad media blocks and references are errors naming the place", "[io][media]") {
+  auto error = [](const std::string& medium, const std::string& object_keys = R"(, "interior": "fog")") {
+    const std::string scene = R"({"camera": {"position": [0, 0, -5], "look_at": [0, 0, 0]}, "media": {"fog": )" + medium +
+                              R"(}, "materials": {"m": {"type": "null"}},
+      "objects": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "m")" + object_keys + "}]}";
+    return test::error_of([&] { parse_scene(scene, "s.json", "."); });
+  };
+  CHECK(error(R"({"type": "homogeneous", "sigma_t": 1})").empty());
+  CHECK_THAT(error(R"({"type": "homogeneous", "sigma_t": -1})"), Catch::Contains("s.json") && Catch::Contains("/media/fog/sigma_t"));
+  CHECK_THAT(error(R"({"type": "homogeneous", "albedo": [0.5, 1.5, 0.5]})"),
+             Catch::Contains("/media/fog/albedo") && Catch::Contains("[0, 1]"));
+  CHECK_THAT(error(R"({"type": "homogeneous", "sigma_t": 1, "sigma_s": 1})"), Catch::Contains("not both"));
+  CHECK_THAT(error(R"({"type": "homogeneous", "phase": {"type": "hg", "g": 1}})"),
+             Catch::Contains("/media/fog/phase/g") && Catch::Contains("(-1, 1)"));
+  CHECK_THAT(error(R"({"type": "homogeneous", "phase": {"type": "rayleigh"}})"),
+             Catch::Contains("/media/fog/phase/type") && Catch::Contains("isotropic, hg"));
+  CHECK_THAT(error(R"({"type": "heterogeneous"})"), Catch::Contains("/media/fog/type") && Catch::Contains("homogeneous"));
+  CHECK_THAT(error(R"({"type": "homogeneous"})", R"(, "exterior": "smoke")"),
+             Catch::Contains("/objects/0/exterior") && Catch::Contains("unknown medium \"smoke\"") && Catch::Contains("fog"));
+  CHECK_THAT(error(R"({"type": "homogeneous", "sigma_t": 1, "density": 2})"), Catch::Contains("density"));
+}
+
+TEST_CASE("media: integrators that do not render media refuse such a scene", "[app][media]") {
+  test::TempDir dir;
+  dir.write("slab.json", kSlab);
+  const test::RunResult photon = test::run_caustica("render slab.json --integrator photon --spp 1 -o out.exr -q", dir);
+  CHECK(photon.exit_code != 0);
+  CHECK_THAT(photon.err, Catch::Contains("slab.json") && Catch::Contains("media") && Catch::Contains("photon"));
+  CHECK_FALSE(std::filesystem::exists(dir.file("out.exr")));
+  const test::RunResult path = test::run_caustica("render slab.json --integrator path --spp 1 -o out.exr -q", dir);
+  CHECK(path.exit_code == 0);
+}
