@@ -14,6 +14,8 @@ namespace caustica {
 
 class Bsdf;
 class PhaseFunction;
+class Volume;
+struct VolumeGrid;
 
 class Params {
  public:
@@ -47,6 +49,11 @@ class Params {
   virtual std::vector<const Bsdf*> bsdfs(const std::string& key, bool allow_pair) const = 0;
   // A nested phase-function block (a medium's); isotropic when the key is absent.
   virtual std::unique_ptr<PhaseFunction> phase(const std::string& key) const = 0;
+  // A volume (a medium's coefficient): a number, a colour or a volume block; `fallback` when
+  // the key is absent.
+  virtual std::unique_ptr<Volume> volume(const std::string& key, const Color& fallback) const = 0;
+  // A voxel grid file named by `key` (required): Mitsuba's binary .vol.
+  virtual VolumeGrid volume_grid(const std::string& key) const = 0;
   // An error at `key` (empty: the block itself), naming the file and the place in it.
   [[noreturn]] virtual void fail(const std::string& key, const std::string& message) const = 0;
   virtual void warn(const std::string& key, const std::string& message) const = 0;

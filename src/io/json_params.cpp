@@ -3,6 +3,7 @@
 #include <filesystem>
 #include "core/media/registry.h"
 #include "io/bsdf_reader.h"
+#include "io/volume_io.h"
 #include "io/image_io.h"
 #include "io/texture_reader.h"
 
@@ -153,6 +154,23 @@ std::unique_ptr<PhaseFunction> JsonParams::phase(const std::string& key) const {
   const std::string ip = at(key);
   const PhasePlugin& row = plugin_row(r_, m_[key], ip, phase_plugins(), "phase function");
   return row.create(JsonParams(ctx_, m_[key], ip));
+}
+
+std::unique_ptr<Volume> JsonParams::volume(const std::string& key, const Color& fallback) const {
+  if (!has(key)) return std::make_unique<ConstVolume>(fallback);
+  const std::string ip = at(key);
+  if (!m_[key].is_object()) return std::make_unique<ConstVolume>(r_.color(m_[key], ip));
+  const VolumePlugin& row = plugin_row(r_, m_[key], ip, volume_plugins(), "volume");
+  return row.create(JsonParams(ctx_, m_[key], ip));
+}
+
+VolumeGrid JsonParams::volume_grid(const std::string& key) const {
+  const std::string path = file(key, "grid volume file");
+  try {
+    return read_vol_file(path);
+  } catch (const std::exception& e) {
+    r_.fail(at(key), e.what());
+  }
 }
 
 void JsonParams::fail(const std::string& key, const std::string& message) const {

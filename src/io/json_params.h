@@ -48,6 +48,8 @@ class JsonParams final : public Params {
   UvTransform uv_transform(const std::string& key) const override;
   std::vector<const Bsdf*> bsdfs(const std::string& key, bool allow_pair) const override;
   std::unique_ptr<PhaseFunction> phase(const std::string& key) const override;
+  std::unique_ptr<Volume> volume(const std::string& key, const Color& fallback) const override;
+  VolumeGrid volume_grid(const std::string& key) const override;
   [[noreturn]] void fail(const std::string& key, const std::string& message) const override;
   void warn(const std::string& key, const std::string& message) const override;
 

@@ -163,7 +163,7 @@ void list_family(std::vector<PluginListing>& out, const char* family, const std:
     PluginListing l{family, p.name, mitsuba, {}};
     if constexpr (std::is_same_v<Plugin, BsdfPlugin> || std::is_same_v<Plugin, TexturePlugin> ||
                   std::is_same_v<Plugin, LightPlugin> || std::is_same_v<Plugin, MediumPlugin> ||
-                  std::is_same_v<Plugin, PhasePlugin>) {
+                  std::is_same_v<Plugin, PhasePlugin> || std::is_same_v<Plugin, VolumePlugin>) {
       l.mitsuba = p.mitsuba;
     }
     l.keys.assign(p.keys.begin(), p.keys.end());
@@ -179,6 +179,7 @@ std::vector<PluginListing> scene_plugins() {
   list_family(out, "light", light_plugins(), true);
   list_family(out, "medium", medium_plugins(), true);
   list_family(out, "phase", phase_plugins(), true);
+  list_family(out, "volume", volume_plugins(), true);
   // Our shapes are not Mitsuba's: its shapes are translated into these.
   list_family(out, "shape", scene_loading::shape_plugins(), false);
   return out;

@@ -2,6 +2,7 @@
 // medium's transmittance and free-flight sampling against their integrals.
 #include <catch2/catch.hpp>
 #include <cmath>
+#include "core/media/heterogeneous.h"
 #include "core/media/homogeneous.h"
 #include "core/media/phase.h"
 #include "support/chi2.h"
@@ -121,4 +122,88 @@ TEST_CASE("media: an extinction of zero in a channel passes that channel, and a 
   CHECK_FALSE(e.scattered);
   CHECK(e.pdf == Color(1.0f));
   CHECK(e.weight.z == Approx(std::exp(-4.0)));
+}
+
+namespace {
+// A 4 x 3 x 5 grid of densities in [0, 2) over [-1, 1]^3 (one channel).
+VolumeGrid random_grid(uint64_t seed) {
+  VolumeGrid g;
+  g.nx = 4, g.ny = 3, g.nz = 5;
+  g.box.lo = Vec3(-1.0f);
+  g.box.hi = Vec3(1.0f);
+  Rng rng(seed);
+  for (int i = 0; i < g.nx * g.ny * g.nz; ++i) g.values.push_back(2.0f * rng.next_float());
+  return g;
+}
+}  // namespace
+
+TEST_CASE("media: a grid volume interpolates its voxels trilinearly within its box and is zero outside it",
+          "[core][media]") {
+  const VolumeGrid g = random_grid(5);
+  const GridVolume v(g);
+  auto at = [&](int x, int y, int z) { return g.values[size_t((z * g.ny + y) * g.nx + x)]; };
+  auto corner = [&](int x, int y, int z) {
+    return Vec3(-1.0f + 2.0f * float(x) / float(g.nx - 1), -1.0f + 2.0f * float(y) / float(g.ny - 1),
+                -1.0f + 2.0f * float(z) / float(g.nz - 1));
+  };
+  CHECK(v.eval(corner(0, 0, 0)).x == Approx(at(0, 0, 0)));
+  CHECK(v.eval(corner(3, 2, 4)).x == Approx(at(3, 2, 4)));
+  CHECK(v.eval(corner(2, 1, 3)).x == Approx(at(2, 1, 3)));
+  // Half way between two voxels along y, a third of the way along x.
+  const Vec3 p = corner(1, 0, 2) + Vec3((2.0f / 3.0f) / 3.0f, 0.5f, 0.0f);
+  const float lerp_x0 = at(1, 0, 2) + (at(2, 0, 2) - at(1, 0, 2)) / 3.0f;
+  const float lerp_x1 = at(1, 1, 2) + (at(2, 1, 2) - at(1, 1, 2)) / 3.0f;
+  CHECK(v.eval(p).x == Approx(0.5f * (lerp_x0 + lerp_x1)).epsilon(1e-5));
+  CHECK(v.eval(Vec3(1.01f, 0.0f, 0.0f)).x == 0.0f);
+  float most = 0;
+  for (float x : g.values) most = std::max(most, x);
+  CHECK(v.max_value() == most);
+}
+
+TEST_CASE("media: in a grid medium, ratio tracking's transmittance and delta tracking's chance of passing both "
+          "average to exp(-integral of sigma_t), and a constant grid is the homogeneous medium",
+          "[core][media]") {
+  const VolumeGrid g = random_grid(11);
+  const float scale = 0.8f;
+  auto medium = [&](VolumeGrid grid) {
+    return HeterogeneousMedium(std::make_unique<GridVolume>(std::move(grid)), std::make_unique<ConstVolume>(Color(0.6f)),
+                               scale, std::make_unique<IsotropicPhase>());
+  };
+  const HeterogeneousMedium m = medium(g);
+  const GridVolume density(g);
+  // A ray entering the box from outside and leaving it before tmax; and one ending inside.
+  for (const float tmax : {5.0f, 1.7f}) {
+    INFO("tmax " << tmax);
+    const Ray ray{Vec3(-1.5f, -0.3f, 0.2f), glm::normalize(Vec3(1.0f, 0.2f, -0.1f)), kInfinity};
+    double optical = 0;
+    constexpr int steps = 200000;
+    for (int i = 0; i < steps; ++i) optical += density.eval(ray.at((i + 0.5f) * tmax / steps)).x * scale * tmax / steps;
+    const double expected = std::exp(-optical);
+    Sampler sampler(21);
+    constexpr int n = 200000;
+    double ratio = 0, passed = 0, scattered_weight = 0;
+    for (int i = 0; i < n; ++i) {
+      ratio += m.transmittance(ray, tmax, sampler).x;
+      const MediumEvent e = m.sample(ray, tmax, 0, sampler);
+      if (e.scattered) {
+        REQUIRE(e.t < tmax);
+        scattered_weight += e.weight.x;
+      } else {
+        passed += 1;
+      }
+    }
+    INFO("optical depth " << optical);
+    CHECK(ratio / n == Approx(expected).epsilon(0.01));
+    CHECK(passed / n == Approx(expected).epsilon(0.01));
+    CHECK(scattered_weight / n == Approx(0.6 * (1.0 - expected)).epsilon(0.01));
+  }
+  // All voxels 1.25 (times 0.8: sigma_t 1): the homogeneous medium's transmittance.
+  VolumeGrid flat = g;
+  for (float& x : flat.values) x = 1.25f;
+  const HeterogeneousMedium c = medium(flat);
+  const Ray ray{Vec3(0.0f, 0.0f, -3.0f), Vec3(0.0f, 0.0f, 1.0f), kInfinity};
+  Sampler sampler(4);
+  double tr = 0;
+  for (int i = 0; i < 100000; ++i) tr += c.transmittance(ray, 10.0f, sampler).x;
+  CHECK(tr / 100000 == Approx(std::exp(-2.0)).epsilon(0.01));
 }

@@ -47,6 +47,8 @@ TEST_CASE("registries: the docs name every registered plugin", "[core][registry]
   check_documented(medium_plugins());
   REQUIRE(phase_plugins().size() >= 2);
   check_documented(phase_plugins());
+  REQUIRE(volume_plugins().size() >= 2);
+  check_documented(volume_plugins());
   // Shapes: every row of the table in scene-format.md (their Mitsuba names are translated).
   const std::string format = doc("scene-format.md");
   for (const PluginListing& p : scene_plugins()) {

@@ -3,6 +3,7 @@
 // the readers' and integrators' refusals.
 #include <catch2/catch.hpp>
 #include "io/scene_loader.h"
+#include "io/volume_io.h"
 #include "support/errors.h"
 #include "support/render_util.h"
 #include "support/run.h"
@@ -99,7 +100,8 @@ TEST_CASE("media: bad media blocks and references are errors naming the place", 
              Catch::Contains("/media/fog/phase/g") && Catch::Contains("(-1, 1)"));
   CHECK_THAT(error(R"({"type": "homogeneous", "phase": {"type": "rayleigh"}})"),
              Catch::Contains("/media/fog/phase/type") && Catch::Contains("isotropic, hg"));
-  CHECK_THAT(error(R"({"type": "heterogeneous"})"), Catch::Contains("/media/fog/type") && Catch::Contains("homogeneous"));
+  CHECK_THAT(error(R"({"type": "fog"})"),
+             Catch::Contains("/media/fog/type") && Catch::Contains("homogeneous, heterogeneous"));
   CHECK_THAT(error(R"({"type": "homogeneous"})", R"(, "exterior": "smoke")"),
              Catch::Contains("/objects/0/exterior") && Catch::Contains("unknown medium \"smoke\"") && Catch::Contains("fog"));
   CHECK_THAT(error(R"({"type": "homogeneous", "sigma_t": 1, "density": 2})"), Catch::Contains("density"));
@@ -114,4 +116,36 @@ TEST_CASE("media: integrators that do not render media refuse such a scene", "[a
   CHECK_FALSE(std::filesystem::exists(dir.file("out.exr")));
   const test::RunResult path = test::run_caustica("render slab.json --integrator path --spp 1 -o out.exr -q", dir);
   CHECK(path.exit_code == 0);
+}
+
+TEST_CASE("path through media: a white furnace filled with a grid medium (delta and ratio tracking) reads the "
+          "shell's radiance",
+          "[trace][media][furnace]") {
+  test::TempDir dir;
+  VolumeGrid g;
+  g.nx = 6, g.ny = 5, g.nz = 4;
+  g.box.lo = Vec3(-1.0f);
+  g.box.hi = Vec3(1.0f);
+  Rng rng(9);
+  for (int i = 0; i < g.nx * g.ny * g.nz; ++i) g.values.push_back(3.0f * rng.next_float() * rng.next_float());
+  dir.write("smoke.vol", format_vol(g));
+  const std::string fog =
+      R"({"type": "heterogeneous", "sigma_t": {"type": "gridvolume", "filename": "smoke.vol"}, "albedo": 1, "scale": 2,
+          "phase": {"type": "hg", "g": -0.3}})";
+  const auto r = render_text(furnace_in_medium(fog, false), "path", "{}", 16, 24, 24, 1, 0, dir.path().string());
+  const Color mean = r.image.mean();
+  for (int c = 0; c < 3; ++c) CHECK(mean[c] == Approx(1.0).epsilon(0.015));
+  CHECK(r.stats.bad_samples == 0);
+  // Bad blocks: a colour extinction, a grid file that is not there.
+  auto error = [&](const std::string& medium) {
+    return test::error_of([&] { parse_scene(furnace_in_medium(medium, false), "s.json", dir.path().string()); });
+  };
+  CHECK_THAT(error(R"({"type": "heterogeneous", "sigma_t": [1, 2, 3]})"),
+             Catch::Contains("/media/fog/sigma_t") && Catch::Contains("one channel"));
+  CHECK_THAT(error(R"({"type": "heterogeneous", "sigma_t": {"type": "gridvolume", "filename": "none.vol"}})"),
+             Catch::Contains("/media/fog/sigma_t/filename") && Catch::Contains("none.vol"));
+  dir.write("short.vol", format_vol(g).substr(0, 100));
+  CHECK_THAT(error(R"({"type": "heterogeneous", "sigma_t": {"type": "gridvolume", "filename": "short.vol"}})"),
+             Catch::Contains("s.json") && Catch::Contains("/media/fog/sigma_t/filename") && Catch::Contains("short.vol") &&
+                 Catch::Contains("truncated"));
 }

@@ -6,6 +6,7 @@
 #include <vector>
 #include "core/media/medium.h"
 #include "core/media/phase.h"
+#include "core/media/volume.h"
 #include "core/params.h"
 
 namespace caustica {
@@ -25,5 +26,14 @@ struct PhasePlugin {
   std::vector<const char*> keys;
 };
 const std::vector<PhasePlugin>& phase_plugins();
+
+// Volumes a medium reads its coefficients from (a medium's sigma_t and albedo blocks).
+struct VolumePlugin {
+  const char* name;
+  bool mitsuba;
+  std::unique_ptr<Volume> (*create)(const Params&);
+  std::vector<const char*> keys;
+};
+const std::vector<VolumePlugin>& volume_plugins();
 
 }  // namespace caustica

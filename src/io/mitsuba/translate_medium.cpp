@@ -9,8 +9,9 @@ namespace caustica::mitsuba_translation {
 std::string Translator::medium(const XmlObject& o) {
   const auto it = media_.find(&o);
   if (it != media_.end()) return it->second;
+  // (Mitsuba's heterogeneous media read gridvolumes in its own unit-cube convention: not yet.)
   if (o.type != "homogeneous") {
-    unsupported(o, "medium", mitsuba_names(medium_plugins()), "ignored (vacuum in its place)");
+    unsupported(o, "medium", {"homogeneous"}, "ignored (vacuum in its place)");
     return "";
   }
   std::string name = !o.id.empty() ? o.id : "medium" + std::to_string(++anonymous_);

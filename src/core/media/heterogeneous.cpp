@@ -1,0 +1,83 @@
+#include "core/media/heterogeneous.h"
+#include <algorithm>
+#include <cmath>
+
+namespace caustica {
+
+HeterogeneousMedium::HeterogeneousMedium(std::unique_ptr<Volume> sigma_t, std::unique_ptr<Volume> albedo, float scale,
+                                         std::unique_ptr<PhaseFunction> phase)
+    : sigma_t_(std::move(sigma_t)),
+      albedo_(std::move(albedo)),
+      scale_(scale),
+      majorant_(sigma_t_->max_value() * scale),
+      phase_(std::move(phase)) {}
+
+bool HeterogeneousMedium::clip(const Ray& ray, float tmax, float& t0, float& t1) const {
+  t0 = 0.0f;
+  t1 = tmax;
+  const Bounds b = sigma_t_->bounds();
+  if (b.empty()) return majorant_ > 0.0f;
+  for (int a = 0; a < 3; ++a) {
+    const float inv = 1.0f / ray.dir[a];
+    float near = (b.lo[a] - ray.origin[a]) * inv, far = (b.hi[a] - ray.origin[a]) * inv;
+    if (near > far) std::swap(near, far);
+    // (A direction along the slab: inv is infinite, and a NaN from 0 * inf keeps the bound.)
+    if (near > t0) t0 = near;
+    if (far < t1) t1 = far;
+  }
+  return t0 < t1 && majorant_ > 0.0f;
+}
+
+MediumEvent HeterogeneousMedium::sample(const Ray& ray, float tmax, int, Sampler& sampler) const {
+  MediumEvent e;
+  e.t = tmax;
+  float t0, t1;
+  if (!clip(ray, tmax, t0, t1)) return e;
+  // Delta tracking: tentative collisions at the majorant's rate, each real with probability
+  // sigma_t / majorant; a real one scatters with the albedo as weight (absorption ends the
+  // path in expectation). One channel of extinction: every channel's density is the same.
+  for (float t = t0;;) {
+    t -= std::log1p(-sampler.next1d()) / majorant_;
+    if (!(t < t1)) return e;
+    const Vec3 p = ray.at(t);
+    const float sigma = sigma_t_->eval(p).x * scale_;
+    if (sampler.next1d() * majorant_ < sigma) {
+      e.scattered = true;
+      e.t = t;
+      e.weight = albedo_->eval(p);
+      return e;
+    }
+  }
+}
+
+Color HeterogeneousMedium::transmittance(const Ray& ray, float tmax, Sampler& sampler) const {
+  float t0, t1;
+  if (!clip(ray, tmax, t0, t1)) return Color(1.0f);
+  // Ratio tracking: the product of each tentative collision's chance of being a null one.
+  float tr = 1.0f;
+  for (float t = t0;;) {
+    t -= std::log1p(-sampler.next1d()) / majorant_;
+    if (!(t < t1)) return Color(tr);
+    tr *= 1.0f - sigma_t_->eval(ray.at(t)).x * scale_ / majorant_;
+    // Russian roulette once little is left (unbiased: the survivors carry twice as much).
+    if (tr < 0.05f) {
+      if (sampler.next1d() < 0.5f) return Color(0.0f);
+      tr *= 2.0f;
+    }
+  }
+}
+
+std::unique_ptr<Medium> HeterogeneousMedium::create(const Params& p) {
+  const double scale = p.number("scale", 1.0);
+  if (!(scale >= 0.0)) p.fail("scale", "scale must not be negative");
+  std::unique_ptr<Volume> sigma_t = p.volume("sigma_t", Color(1.0f));
+  if (sigma_t->channels() != 1) {
+    p.fail("sigma_t", "a heterogeneous medium's sigma_t is one channel (a density) here; give the colour in albedo");
+  }
+  std::unique_ptr<Volume> albedo = p.volume("albedo", Color(0.75f));
+  if (albedo->max_value() > 1.0f) p.fail("albedo", "albedo must lie in [0, 1] (above 1 the medium would create light)");
+  if (!std::isfinite(sigma_t->max_value() * scale)) p.fail("scale", "sigma_t times scale overflows");
+  return std::make_unique<HeterogeneousMedium>(std::move(sigma_t), std::move(albedo), float(scale), p.phase("phase"));
+}
+
+}  // namespace caustica

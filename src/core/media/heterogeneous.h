@@ -1,0 +1,29 @@
+// A heterogeneous medium (Mitsuba's `heterogeneous`): extinction sigma_t and albedo given by
+// volumes (a grid file, or a constant), times `scale`. Free flights by delta tracking and
+// shadow rays' transmittance by ratio tracking (Novak et al. 2014), both against the grid's
+// largest extinction as majorant, within the grid's box (the medium is empty outside it).
+// sigma_t is one channel (a density); the albedo may be a colour.
+#pragma once
+#include "core/media/medium.h"
+#include "core/media/volume.h"
+
+namespace caustica {
+
+class HeterogeneousMedium final : public Medium {
+ public:
+  HeterogeneousMedium(std::unique_ptr<Volume> sigma_t, std::unique_ptr<Volume> albedo, float scale,
+                      std::unique_ptr<PhaseFunction> phase);
+  MediumEvent sample(const Ray& ray, float tmax, int channel, Sampler& sampler) const override;
+  Color transmittance(const Ray& ray, float tmax, Sampler& sampler) const override;
+  const PhaseFunction& phase() const override { return *phase_; }
+  static std::unique_ptr<Medium> create(const Params& p);
+
+ private:
+  std::unique_ptr<Volume> sigma_t_, albedo_;
+  float scale_, majorant_;
+  std::unique_ptr<PhaseFunction> phase_;
+  // The part of [0, tmax] inside the extinction's bounds; false where none is.
+  bool clip(const Ray& ray, float tmax, float& t0, float& t1) const;
+};
+
+}  // namespace caustica
