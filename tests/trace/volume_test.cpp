@@ -149,3 +149,12 @@ TEST_CASE("path through media: a white furnace filled with a grid medium (delta 
              Catch::Contains("s.json") && Catch::Contains("/media/fog/sigma_t/filename") && Catch::Contains("short.vol") &&
                  Catch::Contains("truncated"));
 }
+
+TEST_CASE("path through media: identical pixels for 1 and 2 threads", "[trace][media][determinism]") {
+  const std::string scene =
+      furnace_in_medium(R"({"type": "homogeneous", "sigma_t": [0.4, 1.0, 2.5], "albedo": 0.9, "phase": {"type": "hg", "g": 0.5}})", true);
+  const auto one = render_text(scene, "path", "{}", 2, 16, 16, 9, 1);
+  const auto two = render_text(scene, "path", "{}", 2, 16, 16, 9, 2);
+  CHECK(one.image.mean().x > 0.1f);
+  CHECK(one.image.pixels == two.image.pixels);
+}
