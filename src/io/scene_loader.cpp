@@ -161,9 +161,7 @@ template <class Plugin>
 void list_family(std::vector<PluginListing>& out, const char* family, const std::vector<Plugin>& table, bool mitsuba) {
   for (const Plugin& p : table) {
     PluginListing l{family, p.name, mitsuba, {}};
-    if constexpr (std::is_same_v<Plugin, BsdfPlugin> || std::is_same_v<Plugin, TexturePlugin> ||
-                  std::is_same_v<Plugin, LightPlugin> || std::is_same_v<Plugin, MediumPlugin> ||
-                  std::is_same_v<Plugin, PhasePlugin> || std::is_same_v<Plugin, VolumePlugin>) {
+    if constexpr (std::is_same_v<Plugin, BsdfPlugin> || is_family_row<Plugin>::value) {
       l.mitsuba = p.mitsuba;
     }
     l.keys.assign(p.keys.begin(), p.keys.end());

@@ -35,26 +35,30 @@ Color StratifiedDirect::estimate(const Scene& scene, const SurfaceHit& hit, cons
   return estimate_direct(scene, hit, wo, u_light_[i], u_[i], sampler, mis_ratio);
 }
 
+namespace {
+// The light u_light chooses for a point p (shading normal n, or zero in a medium) and the point
+// u picks on it; false where there is none.
+bool choose_light_point(const Scene& scene, const Vec3& p, const Vec3& n, float u_light, const Vec2& u, float& pmf,
+                        LightSample& ls) {
+  const Light* light = scene.sample_light(p, n, u_light, pmf);
+  return light && pmf > 0.0f && light->sample_li(p, u, ls);
+}
+}  // namespace
+
 Color estimate_direct(const Scene& scene, const SurfaceHit& hit, const Vec3& wo, float u_light, const Vec2& u,
                       Sampler& sampler, float mis_ratio, int32_t medium) {
   float pmf = 0.0f;
-  const Light* light = scene.sample_light(hit.p, hit.frame.n, u_light, pmf);
-  if (!light || pmf <= 0.0f) return Color(0.0f);
   LightSample ls;
-  if (!light->sample_li(hit.p, u, ls)) return Color(0.0f);
+  if (!choose_light_point(scene, hit.p, hit.frame.n, u_light, u, pmf, ls)) return Color(0.0f);
   const Vec3 wo_l = hit.frame.to_local(wo), wi_l = hit.frame.to_local(ls.wi);
   if (hit.leaks(ls.wi)) return Color(0.0f);
   const Color f = hit.material->eval(wo_l, wi_l, hit.sp);
   if (is_black(f)) return Color(0.0f);
   ++sampler.rays;
-  const Ray shadow = spawn_ray_to(hit.p, hit.n, ls.p, ls.n);
-  Color tr(1.0f);
-  if (scene.has_media()) {
-    tr = scene.transmittance(shadow, hit.media ? hit.media->entered(ls.wi, hit.n) : medium, sampler);
-    if (is_black(tr)) return Color(0.0f);
-  } else if (scene.occluded(shadow)) {
-    return Color(0.0f);
-  }
+  // (Without media, occluded() alone.)
+  const Color tr = scene.transmittance(spawn_ray_to(hit.p, hit.n, ls.p, ls.n),
+                                       hit.media ? hit.media->entered(ls.wi, hit.n) : medium, sampler);
+  if (is_black(tr)) return Color(0.0f);
   float w = 1.0f;
   if (mis_ratio > 0.0f && ls.pdf > 0.0f) w = mis_weight(pmf * ls.pdf, mis_ratio * hit.material->pdf(wo_l, wi_l, hit.sp));
   return tr * f * ls.weight * (w * std::abs(wi_l.z) / pmf);
@@ -65,12 +69,9 @@ Color estimate_direct_in_medium(const Scene& scene, const Vec3& p, const Vec3& w
   const float u_light = sampler.next1d();
   const Vec2 u = sampler.next2d();
   float pmf = 0.0f;
-  const Light* light = scene.sample_light(p, Vec3(0.0f), u_light, pmf);  // (no normal)
-  if (!light || pmf <= 0.0f) return Color(0.0f);
   LightSample ls;
-  if (!light->sample_li(p, u, ls)) return Color(0.0f);
-  const PhaseFunction& phase = scene.media[size_t(medium)]->phase();
-  const float f = phase.eval(wo, ls.wi);
+  if (!choose_light_point(scene, p, Vec3(0.0f), u_light, u, pmf, ls)) return Color(0.0f);
+  const float f = scene.media[size_t(medium)]->phase().eval(wo, ls.wi);
   if (!(f > 0.0f)) return Color(0.0f);
   ++sampler.rays;
   const Color tr = scene.transmittance(spawn_ray_to(p, Vec3(0.0f), ls.p, ls.n), medium, sampler);

@@ -37,13 +37,15 @@ Color trace_path(const Ray& camera_ray, const Scene& scene, Sampler& sampler, co
 }
 
 Color trace_volume_path(const Ray& camera_ray, const Scene& scene, Sampler& sampler, const MonteCarloSettings& settings) {
-  // The path's throughput is beta / mean(r): beta the product of its factors, r per channel the
-  // product of the densities of its medium events had that channel been sampled (the hero
+  // The path's throughput is path.beta / mean(r): beta the product of its factors, r per channel
+  // the product of the densities of its medium events had that channel been sampled (the hero
   // channel samples them all: spectral MIS over the whole path).
-  Color L(0.0f), beta(1.0f), r(1.0f);
+  EyePath path{Color(0.0f), Color(1.0f), BsdfVertex{}, settings.max_depth, settings.hide_emitters};
+  Color& L = path.L;
+  Color& beta = path.beta;
+  Color r(1.0f);
   auto throughput = [&] { return beta * (3.0f / (r.x + r.y + r.z)); };
   const int hero = std::min(int(sampler.next1d() * 3.0f), 2);
-  BsdfVertex from;  // the camera: emission counts in full
   int32_t medium = scene.camera_medium;
   Ray ray = camera_ray;
   int depth = 0;
@@ -73,7 +75,7 @@ Color trace_volume_path(const Ray& camera_ray, const Scene& scene, Sampler& samp
         Vec3 wi;
         const float pdf = scene.media[size_t(medium)]->phase().sample(wo, sampler.next2d(), wi);
         if (!(pdf > 0.0f)) break;  // (the weight f / pdf is 1)
-        from = BsdfVertex{false, pdf, p, Vec3(0.0f)};
+        path.from = BsdfVertex{false, pdf, p, Vec3(0.0f)};
         ray = Ray{p, wi, kInfinity};
         ++depth;
         if (!survives()) break;
@@ -82,7 +84,7 @@ Color trace_volume_path(const Ray& camera_ray, const Scene& scene, Sampler& samp
     }
     const bool visible = !(settings.hide_emitters && depth == 0);
     if (!found) {
-      if (visible) L += throughput() * escaped_mis(scene, ray.dir, from);
+      if (visible) L += throughput() * escaped_mis(scene, ray.dir, path.from);
       break;
     }
     if (Scene::is_medium_boundary(hit)) {  // not a vertex: the ray goes on in the other medium
@@ -90,19 +92,12 @@ Color trace_volume_path(const Ray& camera_ray, const Scene& scene, Sampler& samp
       ray = Ray{offset_origin(hit.p, hit.n, ray.dir), ray.dir, kInfinity};
       continue;
     }
-    if (visible) L += throughput() * emission_mis(scene, hit, scene.emitted(hit, hit.frame.to_local(-ray.dir)), from);
+    if (visible) L += throughput() * emission_mis(scene, hit, scene.emitted(hit, hit.frame.to_local(-ray.dir)), path.from);
     if (depth >= settings.max_depth) break;
     const Vec3 wo = -ray.dir;
     if (!hit.material->is_specular()) L += throughput() * estimate_direct(scene, hit, wo, sampler, 1.0f, medium);
-    BsdfSample bs;
-    const Vec2 u = sampler.next2d();
-    if (!hit.material->sample(hit.frame.to_local(wo), u, sampler.next1d(), bs, hit.sp)) break;
-    const Vec3 wi = hit.frame.to_world(bs.wi);
-    if (hit.leaks(wi)) break;
-    beta *= bs.weight;
-    from = BsdfVertex{bs.delta, bs.pdf, hit.p, hit.frame.n};
-    if (hit.media) medium = hit.media->entered(wi, hit.n);
-    ray = spawn_ray(hit.p, hit.n, wi);
+    if (!path.scatter(hit, wo, sampler, ray)) break;
+    if (hit.media) medium = hit.media->entered(ray.dir, hit.n);
     ++depth;
     if (!survives()) break;
   }

@@ -7,15 +7,11 @@
 #include <vector>
 #include "core/lights/light.h"
 #include "core/params.h"
+#include "core/registry.h"
 
 namespace caustica {
 
-struct LightPlugin {
-  const char* name;
-  bool mitsuba;
-  std::unique_ptr<Light> (*create)(const Params&);
-  std::vector<const char*> keys;  // every key besides "type" (and "name")
-};
+using LightPlugin = FamilyRow<Light>;  // (keys: besides "type", "name" and "sampling_weight")
 
 const std::vector<LightPlugin>& light_plugins();
 

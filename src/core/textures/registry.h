@@ -4,16 +4,12 @@
 #include <string>
 #include <vector>
 #include "core/params.h"
+#include "core/registry.h"
 #include "core/textures/texture.h"
 
 namespace caustica {
 
-struct TexturePlugin {
-  const char* name;
-  bool mitsuba;
-  std::unique_ptr<Texture> (*create)(const Params&);
-  std::vector<const char*> keys;  // every key besides "type"
-};
+using TexturePlugin = FamilyRow<Texture>;
 
 const std::vector<TexturePlugin>& texture_plugins();
 const TexturePlugin* find_texture_plugin(const std::string& name);
