@@ -206,8 +206,9 @@ int run_cli(int argc, char** argv) {
   SceneFlags photons_flags;
   CLI::App* photons = app.add_subcommand("photons", "Pictures and point clouds of the photon maps");
   photons_flags.add(photons, pargs.common, false);
-  photons->add_option("--map", pargs.map, "global, caustic or both")
-      ->check(CLI::IsMember({"global", "caustic", "both"}));
+  photons->add_option("--map", pargs.map,
+                      "global, caustic, both (the surface maps), volume (in media: the volume maps) or all")
+      ->check(CLI::IsMember({"global", "caustic", "both", "volume", "all"}));
   photons->add_option("-o,--output", pargs.output, "OUT.png (photons splatted through the camera) or OUT.ply")
       ->required();
   photons->add_flag("--heatmap", pargs.heatmap, "PNG: photon density as a false-colour heat map");

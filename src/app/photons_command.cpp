@@ -24,25 +24,32 @@ Color flux_colour(const Color& power) {
   return m > 0 ? power / m : Color(0.0f);
 }
 
-bool visible_from_camera(const Scene& scene, const Photon& ph) {
+bool visible_from_camera(const Scene& scene, const Photon& ph, bool volume) {
   const Vec3 eye = scene.camera.eye_for(ph.position);
-  const Vec3 n = ph.surface_normal();
-  if (glm::dot(n, eye - ph.position) <= 0) return false;  // seen from behind its surface
-  return !scene.occluded(spawn_ray_to(eye, Vec3(0.0f), ph.position, n));
+  const Vec3 n = volume ? Vec3(0.0f) : ph.surface_normal();
+  if (!volume && glm::dot(n, eye - ph.position) <= 0) return false;  // seen from behind its surface
+  const Ray ray = spawn_ray_to(eye, Vec3(0.0f), ph.position, n);
+  if (!scene.has_media()) return !scene.occluded(ray);
+  // Through media boundaries, not through surfaces (the media's own attenuation aside).
+  Sampler sampler(0);
+  return !is_black(scene.transmittance(ray, -1, sampler));
 }
 }  // namespace
 
 Image splat_photons(const Scene& scene, const std::vector<const PhotonMap*>& maps, const Image& background,
-                    bool heatmap, size_t* visible) {
+                    bool heatmap, size_t* visible, const std::vector<const PhotonMap*>& volume_maps) {
   const int w = background.width, h = background.height;
   Image colour(w, h);
   std::vector<float> count(size_t(w) * h, 0.0f);
   size_t seen = 0;
-  for (const PhotonMap* map : maps) {
+  std::vector<std::pair<const PhotonMap*, bool>> all;
+  for (const PhotonMap* map : maps) all.push_back({map, false});
+  for (const PhotonMap* map : volume_maps) all.push_back({map, true});
+  for (const auto& [map, volume] : all) {
     for (uint32_t i = 0; i < map->size(); ++i) {
       const Photon& ph = (*map)[i];
       float x, y;
-      if (!scene.camera.project(ph.position, x, y) || !visible_from_camera(scene, ph)) continue;
+      if (!scene.camera.project(ph.position, x, y) || !visible_from_camera(scene, ph, volume)) continue;
       const size_t p = size_t(int(y)) * w + size_t(int(x));
       colour.pixels[p] += flux_colour(map->power(i));
       count[p] += 1.0f;
@@ -112,14 +119,23 @@ int run_photons(const PhotonsArgs& args) {
   auto integrator = integrator_for(loaded, "photon", args.common);
   integrator->preprocess(scene, {scene.render.seed, args.common.quiet, &StopSignals::flag()});
   if (stopped()) return StopSignals::exit_code();
-  std::vector<const PhotonMap*> maps;
-  if (args.map != "caustic") maps.push_back(integrator->global_map());
-  if (args.map != "global") maps.push_back(integrator->caustic_map());
+  // Surface maps (global, caustic, both) and in media the volume maps (volume: global and
+  // caustic), or all of them.
+  std::vector<const PhotonMap*> maps, volume_maps;
+  const bool all = args.map == "all";
+  if (all || args.map == "global" || args.map == "both") maps.push_back(integrator->global_map());
+  if (all || args.map == "caustic" || args.map == "both") maps.push_back(integrator->caustic_map());
+  if (all || args.map == "volume") volume_maps = integrator->volume_maps();
+  if (args.map == "volume" && volume_maps.empty())
+    throw InputError(args.common.scene + ": --map volume: the scene has no participating media, so no volume photons");
 
   size_t visible = 0, total = 0;
   for (const PhotonMap* m : maps) total += m->size();
+  for (const PhotonMap* m : volume_maps) total += m->size();
   if (ext == ".ply") {
-    write_ply(args.output, maps);
+    std::vector<const PhotonMap*> every = maps;
+    every.insert(every.end(), volume_maps.begin(), volume_maps.end());
+    write_ply(args.output, every);
   } else {
     // The scene dimmed: direct light and mirrors only, at a quarter of its brightness.
     auto whitted = create_integrator("whitted", JsonSource{}, scene.render);
@@ -131,13 +147,13 @@ int run_photons(const PhotonsArgs& args) {
     Image background = render_image(scene, *whitted, options, stats);
     if (stopped()) return StopSignals::exit_code();
     for (Color& c : background.pixels) c = Color(luminance(c) * 0.25f);
-    write_image(args.output, splat_photons(scene, maps, background, args.heatmap, &visible));
+    write_image(args.output, splat_photons(scene, maps, background, args.heatmap, &visible, volume_maps));
   }
   stop_signals.restore();
   // A signal during the write: the file is complete, and the exit says it was stopped.
   if (StopSignals::stopped()) return StopSignals::exit_code();
   if (!args.common.quiet) {
-    std::cout << "photons: " << total << " in " << args.map << " map" << (args.map == "both" ? "s" : "") << "\n"
+    std::cout << "photons: " << total << " in " << args.map << " map" << (args.map == "global" || args.map == "caustic" ? "" : "s") << "\n"
               << integrator->describe();
     if (ext == ".png") std::cout << "visible from the camera: " << visible << "\n";
     std::cout << "wrote " << args.output << "\n";

@@ -126,7 +126,7 @@ std::unique_ptr<Integrator> integrator_for(const LoadedScene& loaded, const std:
   }
   if (scene.has_media() && !integrator->supports_media()) {
     throw InputError(options.scene + ": the scene has participating media, which the " + integrator->name() +
-                     " integrator does not render yet (path does)");
+                     " integrator does not render yet (path and photon do)");
   }
   return integrator;
 }

@@ -87,6 +87,19 @@ Color Scene::transmittance(const Ray& ray_in, int32_t medium, Sampler& sampler) 
   return Color(0.0f);
 }
 
+int32_t Scene::medium_at(const Vec3& p, const Vec3& dir) const {
+  if (!has_media()) return -1;
+  Ray ray{p, dir, kInfinity};
+  for (int crossing = 0; crossing < 256; ++crossing) {
+    SurfaceHit hit;
+    if (!intersect(ray, hit)) break;
+    // The ray leaves the side it started on: the interior when it crosses outwards.
+    if (hit.media) return glm::dot(dir, hit.n) < 0.0f ? hit.media->exterior : hit.media->interior;
+    ray = Ray{offset_origin(hit.p, hit.n, dir), dir, kInfinity};
+  }
+  return camera_medium;
+}
+
 bool Scene::intersect_opaque(const Ray& ray, SurfaceHit& hit) const {
   Hit h;
   if (!accel_->intersect(ray, h)) return false;

@@ -84,6 +84,10 @@ class Scene {
   // the surfaces that only bound media (null BSDF); zero at any other surface. Without media,
   // 0 or 1 as occluded() says.
   Color transmittance(const Ray& ray, int32_t medium, Sampler& sampler) const;
+  // The medium at point p (-1: none): the near side of the first surface bounding media that a
+  // ray from p along dir meets; the camera's medium where none is met (the space outside every
+  // boundary). Light sources use it for the medium their photons start in.
+  int32_t medium_at(const Vec3& p, const Vec3& dir) const;
   // A surface that bounds media and is not there for light (null BSDF): rays pass it.
   static bool is_medium_boundary(const SurfaceHit& hit) { return hit.media && hit.material->opacity(hit.sp) <= 0.0f; }
   // Chooses a light for a shadow ray from p (shading normal n), by render.light_sampler;

@@ -2,6 +2,7 @@
 #include "photon/photon_tracer.h"
 #include <algorithm>
 #include <chrono>
+#include <unordered_map>
 #include <tbb/parallel_for.h>
 #include "core/error.h"
 #include "core/memory.h"
@@ -43,14 +44,29 @@ class Emitter {
       // A gather surface is a target for its delta lobe (plastic's coat) only.
       if (gather ? m.has(kBsdfSpecular) : is_caustic_surface(m, s.caustic_threshold)) targets_.push_back({o.centre, o.radius});
     }
+    // The medium each light's photons start in: an area light's on the side it emits to (one
+    // point of it stands for all), a point light's where it is, an environment's outside all.
+    if (scene.has_media()) {
+      for (const auto& light : scene.lights) {
+        int32_t medium = scene.interfaces.empty() ? scene.camera_medium : -1;
+        if (!light->is_infinite()) {
+          const LightPoint o = light->sample_origin(Vec2(0.5f));
+          const bool surface = glm::dot(o.n, o.n) > 0.0f;
+          const Vec3 dir = surface ? o.n : glm::normalize(Vec3(0.267f, 0.535f, 0.802f));
+          medium = scene.medium_at(surface ? offset_origin(o.p, o.n, dir) : o.p, dir);
+        }
+        light_medium_.emplace(light.get(), medium);
+      }
+    }
   }
   bool has_targets() const { return !targets_.empty(); }
 
   // Returns false when the sampled photon carries no flux.
-  bool emit(Rng& rng, Ray& ray, Color& flux) const {
+  bool emit(Rng& rng, Ray& ray, Color& flux, int32_t& medium) const {
     float pmf;
     const Light* light = scene_.sample_photon_light(rng.next_float(), pmf);
     if (!light || pmf <= 0) return false;
+    if (!light_medium_.empty()) medium = light_medium_.at(light);
     const Vec2 u_pos(rng.next_float(), rng.next_float());
     const Vec2 u_dir(rng.next_float(), rng.next_float());
     if (!caustic_) {
@@ -121,17 +137,72 @@ class Emitter {
   bool caustic_;
   float scene_radius_;
   std::vector<Aim> targets_;
+  std::unordered_map<const Light*, int32_t> light_medium_;
 };
 
-// Follows one photon; appends what it stores to `out` and counts its rays in `rays`.
-void trace_photon(const Scene& scene, Ray ray, Color flux, bool caustic, const PhotonPassSettings& s, Rng& rng,
-                  std::vector<PendingPhoton>& out, uint64_t& rays) {
+// Where a photon path stands: its throughput is beta / mean(r), r per channel the density of
+// its medium events had that channel been the one sampled (the hero channel samples them all:
+// spectral MIS over the path, as trace_volume_path). Without media r stays 1.
+struct PhotonState {
+  Color beta;
+  Color r{1.0f};
+  Color flux() const { return beta * (3.0f / (r.x + r.y + r.z)); }
+};
+
+// Follows one photon; appends what it stores to `out` (surfaces) and `volume` (scattering
+// points in media) and counts its rays in `rays`. `medium`: the one the photon starts in.
+// Caustic photons store L S+ D at surfaces and L S+ V in media (their first scattering point
+// there, where they end); global photons store every scattering point, those of L S+ V paths
+// marked (VolumePhoton::caustic_path) so that an estimate beside a volume caustic map skips them.
+void trace_photon(const Scene& scene, Ray ray, Color flux, int32_t medium, bool caustic, const PhotonPassSettings& s,
+                  Sampler& sampler, std::vector<PendingPhoton>& out, std::vector<PendingPhoton>& volume,
+                  uint64_t& rays) {
+  Rng& rng = sampler.rng;
   const int max_depth = s.max_depth;
+  const bool media = scene.has_media();
+  const int hero = media ? std::min(int(rng.next_float() * 3.0f), 2) : 0;
+  PhotonState st{flux};
   int specular_bounces = 0;
-  for (int depth = 0; depth < max_depth; ++depth) {
+  bool specular_path = true;  // every bounce so far on a caustic surface (no diffuse, no medium)
+  // (Bounded: a photon crossing boundaries without end stops.)
+  int crossings = 0;
+  for (int depth = 0; depth < max_depth;) {
     SurfaceHit hit;
     ++rays;
-    if (!scene.intersect(ray, hit)) return;
+    const bool found = scene.intersect(ray, hit);
+    if (medium >= 0) {
+      const Medium& med = *scene.media[size_t(medium)];
+      const MediumEvent event = med.sample(ray, found ? hit.t : kInfinity, hero, sampler);
+      st.beta *= event.weight;
+      st.r *= event.pdf;
+      if (is_black(st.beta) || !(st.r[hero] > 0.0f)) return;
+      if (event.scattered) {
+        const Vec3 p = ray.at(event.t), wo = -ray.dir;
+        const bool caustic_path = specular_path && specular_bounces > 0;
+        if (caustic) {
+          if (caustic_path) volume.push_back({p, st.flux(), wo, Vec3(0.0f, 0.0f, 1.0f), depth});
+          return;
+        }
+        volume.push_back({p, st.flux(), wo, Vec3(0.0f, 0.0f, caustic_path ? 1.0f : -1.0f), depth});
+        specular_path = false;
+        // Russian roulette by the scattering albedo (the weight's ratio to the hero density).
+        const float survive = std::min(1.0f, max_component(event.weight) / event.pdf[hero]);
+        if (!(survive > 0.0f) || rng.next_float() >= survive) return;
+        st.beta /= survive;
+        Vec3 wi;
+        if (!(med.phase().sample(wo, Vec2(rng.next_float(), rng.next_float()), wi) > 0.0f)) return;
+        ray = Ray{p, wi, kInfinity};
+        ++depth;
+        continue;
+      }
+    }
+    if (!found) return;
+    if (Scene::is_medium_boundary(hit)) {  // not a bounce: the photon goes on in the other medium
+      if (++crossings > 256) return;
+      medium = hit.media->entered(ray.dir, hit.n);
+      ray = Ray{offset_origin(hit.p, hit.n, ray.dir), ray.dir, kInfinity};
+      continue;
+    }
     const Vec3 wo = -ray.dir;
     const Vec3 wo_l = hit.frame.to_local(wo);
     const Bsdf& m = *hit.material;
@@ -139,19 +210,21 @@ void trace_photon(const Scene& scene, Ray ray, Color flux, bool caustic, const P
     if (gather) {
       const Vec3 n_side = wo_l.z >= 0 ? hit.n : -hit.n;
       if (caustic) {
-        if (specular_bounces > 0) out.push_back({hit.p, flux, wo, n_side, depth});
+        if (specular_bounces > 0 && !s.caustic_volume_only) out.push_back({hit.p, st.flux(), wo, n_side, depth});
         // The caustic map keeps only L S+ D: the photon goes on only along a delta lobe of this
         // surface (plastic's coat), which is not part of the estimate stored here.
         BsdfSample coat;
         if (!delta_continuation(m, wo_l, hit.sp, [&] { return rng.next_float(); }, coat)) return;
         const Vec3 wi = hit.frame.to_world(coat.wi);
-        flux *= coat.weight;
+        st.beta *= coat.weight;
         ++specular_bounces;
-        if (hit.leaks(wi) || is_black(flux)) return;
+        if (hit.leaks(wi) || is_black(st.beta)) return;
+        if (hit.media) medium = hit.media->entered(wi, hit.n);
         ray = spawn_ray(hit.p, hit.n, wi);
+        ++depth;
         continue;
       }
-      out.push_back({hit.p, flux, wo, n_side, depth});
+      out.push_back({hit.p, st.flux(), wo, n_side, depth});
     }
     // A soft surface (rough glossy, not a gather surface) ends a caustic photon: the light it
     // passes on to a gather point is the final gather's.
@@ -166,25 +239,57 @@ void trace_photon(const Scene& scene, Ray ray, Color flux, bool caustic, const P
       // surface its albedo, as in Jensen 2001, sec. 5.3): the flux keeps its magnitude.
       const float survive = std::min(1.0f, max_component(bs.weight));
       if (survive <= 0 || rng.next_float() >= survive) return;
-      flux *= bs.weight / survive;
+      st.beta *= bs.weight / survive;
+      specular_path = false;
     } else {
-      flux *= bs.weight;
+      st.beta *= bs.weight;
       ++specular_bounces;
-      if (is_black(flux)) return;
+      if (!is_caustic_surface(m, s.caustic_threshold)) specular_path = false;
+      if (is_black(st.beta)) return;
     }
+    if (hit.media) medium = hit.media->entered(wi, hit.n);
     ray = spawn_ray(hit.p, hit.n, wi);
+    ++depth;
   }
 }
 
 // A stop asked for (Ctrl-C): a flag polled between chunks and photons, nothing ordered by it.
 bool stop_requested(const PhotonPassSettings& s) { return s.cancel && s.cancel->load(std::memory_order_relaxed); }
 
+// The records of chunks' photons in order, and the scale their flux is stored at: records hold
+// flux / flux_scale, near 1, where half floats are most precise. The mean sums per chunk in
+// parallel, then the chunk sums in order: the same for any thread count.
+std::vector<Photon> normalise(const std::vector<std::vector<PendingPhoton>>& chunks, uint64_t emitted,
+                              float& flux_scale) {
+  std::vector<size_t> at(chunks.size() + 1, 0);
+  for (size_t c = 0; c < chunks.size(); ++c) at[c + 1] = at[c] + chunks[c].size();
+  const size_t stored = at.back();
+  std::vector<double> chunk_sum(chunks.size(), 0.0);
+  tbb::parallel_for(size_t(0), chunks.size(), [&](size_t c) {
+    for (const PendingPhoton& p : chunks[c]) chunk_sum[c] += max_component(p.flux);
+  });
+  double mean = 0;
+  for (double x : chunk_sum) mean += x;
+  mean = stored == 0 ? 1.0 : mean / double(stored);
+  flux_scale = float(mean / double(std::max<uint64_t>(emitted, 1)));
+  const float inv = mean > 0 ? float(1.0 / mean) : 0.0f;
+  std::vector<Photon> result(stored);
+  tbb::parallel_for(size_t(0), chunks.size(), [&](size_t c) {
+    for (size_t k = 0; k < chunks[c].size(); ++k) {
+      const PendingPhoton& p = chunks[c][k];
+      result[at[c] + k] = Photon::make(p.position, p.flux * inv, p.incoming, p.normal, p.bounces);
+    }
+  });
+  return result;
+}
+
 // Emits photons until `wanted` are stored; returns them normalised by the number emitted.
 // `global_emitted`: the global map's emission this pass, which bounds the caustic map's.
 // `rays_out`: the rays traced, trimmed photons included.
+// The photons scattered in media go to volume_out, at volume_scale.
 std::vector<Photon> run_map(const Scene& scene, const PhotonPassSettings& s, bool caustic, uint64_t global_emitted,
                             uint64_t& emitted_out, uint64_t& rays_out, float& flux_scale,
-                            std::vector<std::string>& warnings) {
+                            std::vector<Photon>& volume_out, float& volume_scale, std::vector<std::string>& warnings) {
   std::vector<Photon> result;
   emitted_out = 0;
   const size_t wanted = caustic ? s.caustic_photons : s.global_photons;
@@ -200,47 +305,62 @@ std::vector<Photon> run_map(const Scene& scene, const PhotonPassSettings& s, boo
   const uint64_t stream = caustic ? 1 : 0;
 
   // Each chunk's stored photons, in photon-index order, trimmed to what the wanted count keeps.
-  std::vector<std::vector<PendingPhoton>> chunks;
+  std::vector<std::vector<PendingPhoton>> chunks, volume_chunks;
+  const bool media = scene.has_media();
   size_t stored = 0;
   uint64_t emitted = 0;
   uint64_t chunks_in_round = 8;
   bool done = false;
   while (!done && emitted < cap) {
     if (stop_requested(s)) break;
-    std::vector<std::vector<PendingPhoton>> chunk_out(chunks_in_round);
+    std::vector<std::vector<PendingPhoton>> chunk_out(chunks_in_round), chunk_volume(chunks_in_round);
     std::vector<std::vector<uint32_t>> chunk_counts(chunks_in_round);  // stored per emitted photon
+    std::vector<std::vector<uint32_t>> chunk_volume_counts(chunks_in_round);  // and in media
     std::vector<uint64_t> chunk_rays(chunks_in_round, 0);
     const uint64_t first = emitted;
     tbb::parallel_for(uint64_t(0), chunks_in_round, [&](uint64_t c) {
       if (stop_requested(s)) return;
       auto& out = chunk_out[c];
       auto& counts = chunk_counts[c];
+      auto& vol = chunk_volume[c];
       counts.reserve(kChunk);
+      if (media) chunk_volume_counts[c].reserve(kChunk);
       for (uint64_t i = first + c * kChunk; i < first + (c + 1) * kChunk; ++i) {
-        Rng rng(hash_seed(i, s.seed, stream));
-        const size_t before = out.size();
+        Sampler sampler(hash_seed(i, s.seed, stream));
+        const size_t before = out.size(), volume_before = vol.size();
         Ray ray;
         Color flux;
-        if (emitter.emit(rng, ray, flux)) trace_photon(scene, ray, flux, caustic, s, rng, out, chunk_rays[c]);
-        counts.push_back(uint32_t(out.size() - before));
+        int32_t medium = -1;
+        if (emitter.emit(sampler.rng, ray, flux, medium))
+          trace_photon(scene, ray, flux, medium, caustic, s, sampler, out, vol, chunk_rays[c]);
+        // In media the count that fills the map is the one it holds: a caustic pass keeping
+        // volume photons alone counts those.
+        const size_t kept = caustic && s.caustic_volume_only ? vol.size() - volume_before : out.size() - before;
+        counts.push_back(uint32_t(kept));
+        if (media) chunk_volume_counts[c].push_back(uint32_t(vol.size() - volume_before));
       }
     });
     for (uint64_t r : chunk_rays) rays_out += r;
     // Keep photons in photon-index order up to the one that completes the wanted count (a scan
     // of the counts; the chunks move, nothing is copied).
     for (uint64_t c = 0; c < chunks_in_round && !done; ++c) {
-      size_t keep = 0;
+      size_t keep = 0, keep_volume = 0, taken = 0;
       for (uint32_t n : chunk_counts[c]) {
         keep += n;
+        if (media) keep_volume += chunk_volume_counts[c][taken];
+        ++taken;
         ++emitted;
         if (stored + keep >= wanted || emitted >= cap) {
           done = true;
           break;
         }
       }
+      if (caustic && s.caustic_volume_only) keep = 0;  // (the count was the volume photons')
       chunk_out[c].resize(keep);
-      stored += keep;
+      chunk_volume[c].resize(keep_volume);
+      stored += caustic && s.caustic_volume_only ? keep_volume : keep;
       chunks.push_back(std::move(chunk_out[c]));
+      volume_chunks.push_back(std::move(chunk_volume[c]));
     }
     if (stop_requested(s)) break;
     // Size the next round from the storage rate seen so far (deterministic).
@@ -258,27 +378,8 @@ std::vector<Photon> run_map(const Scene& scene, const PhotonPassSettings& s, boo
                        (caustic ? "the specular objects" : "diffuse surfaces"));
   }
   emitted_out = emitted;
-  // Records hold flux / flux_scale, near 1, where half floats are most precise. The mean sums
-  // per chunk in parallel, then the chunk sums in order: the same for any thread count.
-  std::vector<size_t> at(chunks.size() + 1, 0);
-  for (size_t c = 0; c < chunks.size(); ++c) at[c + 1] = at[c] + chunks[c].size();
-  std::vector<double> chunk_sum(chunks.size(), 0.0);
-  tbb::parallel_for(size_t(0), chunks.size(), [&](size_t c) {
-    for (const PendingPhoton& p : chunks[c]) chunk_sum[c] += max_component(p.flux);
-  });
-  double mean = 0;
-  for (double x : chunk_sum) mean += x;
-  mean = stored == 0 ? 1.0 : mean / double(stored);
-  flux_scale = float(mean / double(std::max<uint64_t>(emitted, 1)));
-  const float inv = mean > 0 ? float(1.0 / mean) : 0.0f;
-  result.resize(stored);
-  tbb::parallel_for(size_t(0), chunks.size(), [&](size_t c) {
-    for (size_t k = 0; k < chunks[c].size(); ++k) {
-      const PendingPhoton& p = chunks[c][k];
-      result[at[c] + k] = Photon::make(p.position, p.flux * inv, p.incoming, p.normal, p.bounces);
-    }
-  });
-  return result;
+  volume_out = normalise(volume_chunks, emitted, volume_scale);
+  return normalise(chunks, emitted, flux_scale);
 }
 
 }  // namespace
@@ -295,9 +396,11 @@ void check_photon_memory(size_t photons) {
 PhotonPassResult trace_photons(const Scene& scene, const PhotonPassSettings& settings) {
   const auto t0 = std::chrono::steady_clock::now();
   PhotonPassResult r;
-  r.global = run_map(scene, settings, false, 0, r.global_emitted, r.rays, r.global_scale, r.warnings);
+  r.global = run_map(scene, settings, false, 0, r.global_emitted, r.rays, r.global_scale, r.volume, r.volume_scale,
+                     r.warnings);
   if (!stop_requested(settings))
-    r.caustic = run_map(scene, settings, true, r.global_emitted, r.caustic_emitted, r.rays, r.caustic_scale, r.warnings);
+    r.caustic = run_map(scene, settings, true, r.global_emitted, r.caustic_emitted, r.rays, r.caustic_scale,
+                        r.volume_caustic, r.volume_caustic_scale, r.warnings);
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return r;
 }

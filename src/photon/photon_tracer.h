@@ -16,6 +16,9 @@ struct PhotonPassSettings {
   // Caustic photons pass only surfaces with a delta lobe or glossy ones smoother than this
   // (is_caustic_surface); the default keeps every surface that is not a gather surface.
   float caustic_threshold = 1e30f;
+  // In media: the caustic emission stores only the first scattering point of L S+ V paths (the
+  // volume caustic map), and counts those towards caustic_photons.
+  bool caustic_volume_only = false;
   uint64_t seed = 0;
   const std::atomic<bool>* cancel = nullptr;  // once set, the pass stops within a chunk and keeps no photons
 };
@@ -24,6 +27,10 @@ struct PhotonPassResult {
   std::vector<Photon> global, caustic;
   uint64_t global_emitted = 0, caustic_emitted = 0;
   float global_scale = 1, caustic_scale = 1;  // a photon's flux is record.power() * scale
+  // In media: the points where global photons scattered (VolumePhoton), and caustic photons
+  // where they first scattered after specular surfaces alone (L S+ V).
+  std::vector<Photon> volume, volume_caustic;
+  float volume_scale = 1, volume_caustic_scale = 1;
   double seconds = 0;
   uint64_t rays = 0;  // rays traced, both maps (kept photons or not): the pass's cost in rays
   std::vector<std::string> warnings;

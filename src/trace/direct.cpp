@@ -1,5 +1,6 @@
 // Next-event estimation shared by the whitted, path and photon integrators.
 #include "trace/direct.h"
+#include "core/media/homogeneous.h"
 #include <algorithm>
 #include <cmath>
 
@@ -30,9 +31,9 @@ StratifiedDirect::StratifiedDirect(Sampler& sampler, int n) {
 }
 
 Color StratifiedDirect::estimate(const Scene& scene, const SurfaceHit& hit, const Vec3& wo, Sampler& sampler, int i,
-                                 float mis_ratio) const {
-  if (i >= count_) return estimate_direct(scene, hit, wo, sampler, mis_ratio);
-  return estimate_direct(scene, hit, wo, u_light_[i], u_[i], sampler, mis_ratio);
+                                 float mis_ratio, int32_t medium) const {
+  if (i >= count_) return estimate_direct(scene, hit, wo, sampler, mis_ratio, medium);
+  return estimate_direct(scene, hit, wo, u_light_[i], u_[i], sampler, mis_ratio, medium);
 }
 
 namespace {
@@ -79,6 +80,107 @@ Color estimate_direct_in_medium(const Scene& scene, const Vec3& p, const Vec3& w
   float w = 1.0f;
   if (mis_ratio > 0.0f && ls.pdf > 0.0f) w = mis_weight(pmf * ls.pdf, mis_ratio * f);
   return tr * ls.weight * (f * w / pmf);
+}
+
+namespace {
+// The part [ta, tb] of [0, tmax] of ray inside the cone {x : angle(x - apex, axis) <= acos(cos_theta)}
+// (cos_theta > 0: one nappe, convex, so the part is one interval); false when empty.
+bool clip_to_cone(const Ray& ray, float tmax, const Vec3& apex, const Vec3& axis, float cos_theta, float& ta,
+                  float& tb) {
+  const float far = std::isfinite(tmax) ? tmax : 1e8f;
+  const Vec3 w = ray.origin - apex;
+  const float c2 = cos_theta * cos_theta;
+  const float dv = glm::dot(ray.dir, axis), wv = glm::dot(w, axis);
+  auto inside = [&](float t) {
+    const Vec3 x = w + t * ray.dir;
+    const float along = glm::dot(x, axis);
+    return along >= 0.0f && along * along >= c2 * glm::dot(x, x);
+  };
+  // The roots of (dv t + wv)^2 - c2 |w + t d|^2 split [0, far] into pieces wholly in or out.
+  const double qa = double(dv) * dv - c2, qb = 2.0 * (double(dv) * wv - c2 * double(glm::dot(ray.dir, w))),
+               qc = double(wv) * wv - c2 * double(glm::dot(w, w));
+  float cuts[4] = {0.0f, far, 0.0f, 0.0f};
+  int n = 2;
+  if (std::abs(qa) > 1e-12) {
+    const double disc = qb * qb - 4.0 * qa * qc;
+    if (disc >= 0.0) {
+      const double r = std::sqrt(disc);
+      for (double root : {(-qb - r) / (2.0 * qa), (-qb + r) / (2.0 * qa)})
+        if (root > 0.0 && root < far) cuts[n++] = float(root);
+    }
+  } else if (std::abs(qb) > 1e-12) {
+    const double root = -qc / qb;
+    if (root > 0.0 && root < far) cuts[n++] = float(root);
+  }
+  std::sort(cuts, cuts + n);
+  ta = kInfinity, tb = -kInfinity;
+  for (int i = 0; i + 1 < n; ++i) {
+    if (!(cuts[i + 1] > cuts[i]) || !inside(0.5f * (cuts[i] + cuts[i + 1]))) continue;
+    ta = std::min(ta, cuts[i]);
+    tb = std::max(tb, cuts[i + 1]);
+  }
+  if (tb >= far && !std::isfinite(tmax)) tb = kInfinity;
+  return tb > ta;
+}
+}  // namespace
+
+Color single_scattering(const Scene& scene, const Ray& ray, float tmax, int32_t medium, const Color& sigma_t,
+                        const Color& sigma_s, Sampler& sampler) {
+  const float u_light = sampler.next1d();
+  const Vec2 u = sampler.next2d();
+  const float u_t = sampler.next1d();
+  float pmf = 0.0f;
+  const Light* light = scene.sample_light(ray.origin, Vec3(0.0f), u_light, pmf);
+  if (!light || !(pmf > 0.0f)) return Color(0.0f);
+  const PhaseFunction& phase = scene.media[size_t(medium)]->phase();
+  const Vec3 wo = -ray.dir;
+  float t = 0.0f, pdf_t = 0.0f;
+  Color incident(0.0f);  // radiance arriving at t from the light's point over its densities
+  Vec3 wi, to, to_n(0.0f);
+  if (light->is_infinite()) {
+    const float mean_t = (sigma_t.x + sigma_t.y + sigma_t.z) / 3.0f;
+    if (!(mean_t > 0.0f)) return Color(0.0f);
+    const float keep = std::isfinite(tmax) ? -std::expm1(-mean_t * tmax) : 1.0f;
+    t = -std::log1p(-u_t * keep) / mean_t;
+    pdf_t = mean_t * std::exp(-mean_t * t) / keep;
+    LightSample ls;
+    if (!(t < tmax) || !light->sample_li(ray.at(t), u, ls)) return Color(0.0f);
+    wi = ls.wi, to = ls.p, to_n = ls.n, incident = ls.weight;
+  } else {
+    const LightPoint lp = light->sample_origin(u);
+    if (!(lp.pdf > 0.0f)) return Color(0.0f);
+    // A spot sends nothing outside its cone: t is sampled only where the ray is inside it.
+    float lo = 0.0f, hi = tmax;
+    const LightBounds lb = light->light_bounds();
+    if (lb.cos_theta_e >= 1.0f && lb.normals.cos_theta > 0.0f && lb.bounds.lo == lb.bounds.hi &&
+        !clip_to_cone(ray, tmax, lb.bounds.lo, lb.normals.axis, lb.normals.cos_theta, lo, hi))
+      return Color(0.0f);
+    // Equiangular: t = t0 + D tan(theta), theta uniform between the segment's ends as seen from
+    // the light's point; density D / ((theta_b - theta_a) (D^2 + (t - t0)^2)).
+    const float t0 = glm::dot(lp.p - ray.origin, ray.dir);
+    const float D = std::max(glm::length(lp.p - ray.at(t0)), 1e-6f * (1.0f + std::abs(t0)));
+    const float theta_a = std::atan2(lo - t0, D);
+    const float theta_b = std::isfinite(hi) ? std::atan2(hi - t0, D) : 0.5f * kPi;
+    if (!(theta_b > theta_a)) return Color(0.0f);
+    const float theta = theta_a + u_t * (theta_b - theta_a);
+    t = std::clamp(t0 + D * std::tan(theta), lo, hi);
+    const float h = t - t0;
+    pdf_t = D / ((theta_b - theta_a) * (D * D + h * h));
+    const Vec3 d = lp.p - ray.at(t);
+    const float dist2 = glm::dot(d, d);
+    if (!(dist2 > 0.0f)) return Color(0.0f);
+    wi = d / std::sqrt(dist2);
+    to = lp.p, to_n = lp.n;
+    incident = light->emitted_towards(lp, -wi) / (dist2 * lp.pdf);
+  }
+  if (!(pdf_t > 0.0f) || is_black(incident)) return Color(0.0f);
+  const float f = phase.eval(wo, wi);
+  if (!(f > 0.0f)) return Color(0.0f);
+  ++sampler.rays;
+  const Vec3 x = ray.at(t);
+  const Color tr = scene.transmittance(spawn_ray_to(x, Vec3(0.0f), to, to_n), medium, sampler);
+  if (is_black(tr)) return Color(0.0f);
+  return beer_lambert(sigma_t, t) * sigma_s * tr * incident * (f / (pmf * pdf_t));
 }
 
 Color emission_mis(const Scene& scene, const SurfaceHit& hit, const Color& Le, const BsdfVertex& from) {

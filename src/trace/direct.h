@@ -21,6 +21,16 @@ Color estimate_direct(const Scene& scene, const SurfaceHit& hit, const Vec3& wo,
 Color estimate_direct_in_medium(const Scene& scene, const Vec3& p, const Vec3& wo, int32_t medium, Sampler& sampler,
                                 float mis_ratio);
 
+// Single scattering towards -ray.dir along [0, tmax] (tmax may be infinite) of ray inside a
+// homogeneous medium (sigma_t, sigma_s, its phase function): the integral of Tr(t) sigma_s
+// times the light scattered at t, by one light (chosen by the light sampler at the ray's
+// origin), one point on it, and t by equiangular sampling towards that point (Kulla and
+// Fajardo 2012: the density follows 1 / distance^2, so a light close to the ray adds no
+// fireflies), the shadow ray through the media from t. A light at infinity takes t by the
+// mean extinction instead.
+Color single_scattering(const Scene& scene, const Ray& ray, float tmax, int32_t medium, const Color& sigma_t,
+                        const Color& sigma_s, Sampler& sampler);
+
 // n light samples at one point, stratified: the light's choice over n strata of [0, 1), the
 // point on it over an sx x sy grid of [0, 1)^2 (the remainder unstratified), the two paired at
 // random. With several samples at a point, the share that lands on a small bright light or a
@@ -32,7 +42,7 @@ class StratifiedDirect {
   StratifiedDirect(Sampler& sampler, int n);
   // Sample i (0 .. n - 1) of estimate_direct.
   Color estimate(const Scene& scene, const SurfaceHit& hit, const Vec3& wo, Sampler& sampler, int i,
-                 float mis_ratio) const;
+                 float mis_ratio, int32_t medium = -1) const;
 
  private:
   int count_ = 0;  // samples with stored numbers

@@ -58,6 +58,8 @@ class Integrator {
   // The photon maps after preprocess, for pictures of them; null where there are none.
   virtual const PhotonMap* global_map() const { return nullptr; }
   virtual const PhotonMap* caustic_map() const { return nullptr; }
+  // In participating media: the maps of photons scattered in them (none elsewhere).
+  virtual std::vector<const PhotonMap*> volume_maps() const { return {}; }
 };
 
 // What Monte Carlo integrators share (Mitsuba's MonteCarloIntegrator), read once by

@@ -136,6 +136,8 @@ PhotonSettings PhotonSettings::read(const Params& p, const RenderSettings& rende
   number("caustic_threshold", s.caustic_threshold);
   s.alpha = float(p.number_in("alpha", s.alpha, 1e-3, 0.999));
   s.path_fallback = final_gather && p.boolean("path_fallback", true);
+  integer("volume_k", s.volume_k, 1, 10000);
+  number("volume_radius", s.volume_radius);
   return s;
 }
 
@@ -163,10 +165,23 @@ std::unique_ptr<Integrator> PhotonIntegrator::create_direct(const Params& p, con
 void PhotonIntegrator::preprocess(const Scene& scene, const PreprocessContext& context) {
   preprocess_start_ = std::chrono::steady_clock::now();
   horizon_work_ = -1;
+  volume_r1_ = volume_caustic_r1_ = 0.0f;
+  volume_radius2_scale_ = 1.0f;
   horizon_seconds_ = 0;
   const size_t for_image = PhotonSettings::photons_for_image(scene.camera.width(), scene.camera.height());
   if (settings_.photons_from_image) settings_.photons = for_image;
   if (settings_.caustic_photons_from_image) settings_.caustic_photons = for_image;
+  media_ = scene.has_media();
+  if (media_) {
+    // In media the eye path takes the global map's estimate (trace_media_eye); the caustic
+    // photons go to the volume caustic map alone. No pilot: its models know no media.
+    const size_t volume_caustic = settings_.caustic_photons;
+    settings_.use_global_estimate();
+    settings_.caustic_photons = volume_caustic;
+    settings_.path_fallback = false;
+    settings_.gather_rays_given = settings_.direct_samples_given = settings_.glossy_direct_samples_given = true;
+    settings_.final_gather_given = settings_.caustic_threshold_given = true;
+  }
   check_photon_memory(settings_.photons + (final_gather_ ? settings_.caustic_photons : 0));
   global_est_.k = size_t(settings_.global_k);
   caustic_est_.k = size_t(settings_.caustic_k);
@@ -189,7 +204,10 @@ void PhotonIntegrator::preprocess(const Scene& scene, const PreprocessContext& c
     // The pilot runs on passes 0 and 1's maps on every MPI rank, so that all choose alike.
     built_pass_ = -1;
     const size_t photons = settings_.photons, caustic_photons = settings_.caustic_photons;
-    if (!choose_sample_counts(scene, context)) return;
+    if (!media_ && !choose_sample_counts(scene, context)) return;
+    // The volume maps' first radii come from pass 0's maps on every MPI rank, so that all
+    // render alike.
+    if (media_ && context.first_pass != 0 && !build_maps(scene, context.seed, context)) return;
     if (settings_.photons != photons || settings_.caustic_photons != caustic_photons) {
       first_radii();
       built_pass_ = -1;  // the pilot's maps had the other counts
@@ -207,7 +225,7 @@ void PhotonIntegrator::preprocess(const Scene& scene, const PreprocessContext& c
   caustic_est_.max_radius = settings_.caustic_radius > 0 ? settings_.caustic_radius
                                                          : even_radius(settings_.caustic_k, caustic_.size());
   build_irradiance();
-  choose_sample_counts(scene, context);
+  if (!media_) choose_sample_counts(scene, context);
 }
 
 bool PhotonIntegrator::begin_pass(const Scene& scene, int pass, const PreprocessContext& context) {
@@ -217,7 +235,7 @@ bool PhotonIntegrator::begin_pass(const Scene& scene, int pass, const Preprocess
   const float scale2 = float(progressive_radius2_scale(pass, settings_.alpha));
   global_est_.max_radius = global_r1_;
   caustic_est_.max_radius = caustic_r1_;
-  global_est_.radius2_scale = caustic_est_.radius2_scale = scale2;
+  global_est_.radius2_scale = caustic_est_.radius2_scale = volume_radius2_scale_ = scale2;
   // Pass i's photons come from their own seed: the image is the same for any thread count.
   const uint64_t seed = pass == 0 ? context.seed : hash_seed(context.seed, uint64_t(pass), 0x70706d);  // "ppm"
   if (!build_maps(scene, seed, context)) return false;
@@ -250,6 +268,7 @@ bool PhotonIntegrator::build_maps(const Scene& scene, uint64_t seed, const Prepr
   PhotonPassSettings pass;
   pass.global_photons = settings_.photons;
   pass.caustic_photons = final_gather_ ? settings_.caustic_photons : 0;
+  pass.caustic_volume_only = media_;
   pass.max_depth = settings_.max_depth;
   pass.glossy_threshold = settings_.glossy_threshold;
   pass.caustic_threshold = final_gather_ ? settings_.caustic_threshold : pass.caustic_threshold;
@@ -270,6 +289,21 @@ bool PhotonIntegrator::build_maps(const Scene& scene, uint64_t seed, const Prepr
   stats_.build_seconds += seconds_since(t0);
   stats_.global_bytes = global_.memory_bytes();
   stats_.caustic_bytes = caustic_.memory_bytes();
+  if (media_) {
+    t0 = std::chrono::steady_clock::now();
+    stats_.volume_photons = r.volume.size();
+    stats_.volume_caustic_photons = r.volume_caustic.size();
+    tbb::parallel_invoke([&] { volume_.build(std::move(r.volume), r.volume_scale); },
+                         [&] { volume_caustic_.build(std::move(r.volume_caustic), r.volume_caustic_scale); });
+    stats_.build_seconds += seconds_since(t0);
+    stats_.volume_bytes = volume_.memory_bytes() + volume_caustic_.memory_bytes();
+    // The first radii from the first maps (each map its own: a volume caustic is far denser).
+    if (volume_r1_ <= 0.0f)
+      volume_r1_ = settings_.volume_radius > 0 ? settings_.volume_radius : volume_.median_knn_radius(size_t(settings_.volume_k));
+    if (volume_caustic_r1_ <= 0.0f)
+      volume_caustic_r1_ = settings_.volume_radius > 0 ? settings_.volume_radius
+                                                       : volume_caustic_.median_knn_radius(size_t(settings_.volume_k));
+  }
 
   return !(context.cancel && context.cancel->load());
 }
@@ -421,6 +455,7 @@ void PhotonIntegrator::record_aov(const SurfaceHit& hit, const Vec3& wo, float* 
 
 Color PhotonIntegrator::Li(const Ray& camera_ray, const Scene& scene, Sampler& sampler) const {
   if (pilot_.path_mode) return trace_path(camera_ray, scene, sampler, settings_);
+  if (media_) return trace_media_eye(camera_ray, scene, sampler);
   return trace_eye(camera_ray, scene, sampler, 0, kSplitLevels);
 }
 
@@ -979,6 +1014,15 @@ std::string PhotonIntegrator::describe() const {
   } else {
     s << "progressive: no\nphotons emitted: " << stats_.global_emitted << " (global), " << stats_.caustic_emitted
       << " (caustic)\n";
+  }
+  if (media_) {
+    s << "participating media: the global map's estimate at surfaces, the beam radiance estimate along media\n";
+    s << "volume map: " << stats_.volume_photons << " photons (last pass), first radius " << volume_r1_
+      << ", now " << volume_radius() << "\n";
+    s << "volume caustic map: " << stats_.volume_caustic_photons << " photons (last pass), first radius "
+      << volume_caustic_r1_ << ", now " << volume_caustic_radius() << "\n";
+    const size_t nv = stats_.volume_photons + stats_.volume_caustic_photons;
+    if (nv > 0) s << "bytes per volume photon (records, kd-tree, hierarchy): " << double(stats_.volume_bytes) / double(nv) << "\n";
   }
   s << "max_depth: " << settings_.max_depth << "\n";
   s << "photon pass time: " << stats_.photon_seconds << " s\n";

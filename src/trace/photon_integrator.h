@@ -3,6 +3,7 @@
 #include <chrono>
 #include "photon/density.h"
 #include "photon/photon_map.h"
+#include "photon/volume_map.h"
 #include "trace/integrator.h"
 
 namespace caustica {
@@ -59,6 +60,10 @@ struct PhotonSettings : MonteCarloSettings {
   // Under a time budget, the image is path traced where the pilot predicts path tracing's error
   // at the budget below ours (and no caustic photons are stored).
   bool path_fallback = true;
+  // In participating media (the scene has any): the volume photons' first radius, given or
+  // holding volume_k of them (VolumePhotonMap::median_knn_radius), shrinking as the surfaces'.
+  int volume_k = 30;
+  float volume_radius = 0;
 
   // Reads the integrator block (its keys were checked against the registry row).
   static PhotonSettings read(const Params& p, const RenderSettings& render, bool final_gather);
@@ -127,6 +132,8 @@ struct PhotonStats {
   int pilot_passes = 0;  // and for the pilot (choose_sample_counts)
   uint64_t global_emitted = 0, caustic_emitted = 0;
   size_t global_bytes = 0, caustic_bytes = 0, irradiance_bytes = 0;
+  size_t volume_photons = 0, volume_caustic_photons = 0;  // the last pass's
+  size_t volume_bytes = 0;  // both volume maps'
 };
 
 class PhotonIntegrator final : public Integrator {
@@ -145,6 +152,16 @@ class PhotonIntegrator final : public Integrator {
   bool supports_aov() const override { return true; }
   const PhotonMap* global_map() const override { return &global_; }
   const PhotonMap* caustic_map() const override { return &caustic_; }
+  bool supports_media() const override { return final_gather_; }
+  std::vector<const PhotonMap*> volume_maps() const override {
+    if (!media_) return {};
+    return {&volume_.photons(), &volume_caustic_.photons()};
+  }
+  const VolumePhotonMap& volume_map() const { return volume_; }
+  const VolumePhotonMap& volume_caustic_map() const { return volume_caustic_; }
+  // The volume maps' radii in the current pass.
+  float volume_radius() const { return volume_r1_ * std::sqrt(volume_radius2_scale_); }
+  float volume_caustic_radius() const { return volume_caustic_r1_ * std::sqrt(volume_radius2_scale_); }
   const PhotonSettings& settings() const { return settings_; }
   const PhotonStats& stats() const { return stats_; }
   const SampleCountPilot& pilot() const { return pilot_; }
@@ -237,6 +254,20 @@ class PhotonIntegrator final : public Integrator {
   SampleCountPilot pilot_;
   double photon_pass_cost_ = 0;  // the last photon pass's cost in rays (pilot)
   PhotonMap global_, caustic_;
+  // In media (media_): the eye path (trace_media_eye) takes the global map's estimate at its
+  // gather point (no final gathering, no surface caustic map: the global map holds caustics),
+  // shadow rays through the media, and along every segment through a medium the beam radiance
+  // estimate of the volume maps (the light scattered once more than the photons had) beside a
+  // shadow ray from one point of it (single scattering).
+  bool media_ = false;
+  Color trace_media_eye(const Ray& ray, const Scene& scene, Sampler& sampler) const;
+  // The in-scattered radiance towards -ray.dir along [0, tmax] of ray in `medium` from eye
+  // vertex `depth`: volume photons of one bounce or more, each weighted by `weight(t)` (the
+  // transmittance to it).
+  template <class W>
+  Color beam_estimate(const Ray& ray, float tmax, const Medium& medium, int depth, W&& weight) const;
+  VolumePhotonMap volume_, volume_caustic_;
+  float volume_r1_ = 0, volume_caustic_r1_ = 0, volume_radius2_scale_ = 1;
   IrradianceCache irradiance_;
   EstimateSettings global_est_, caustic_est_;
   float global_r1_ = 0, caustic_r1_ = 0;  // progressive: the first pass's radii

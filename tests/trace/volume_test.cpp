@@ -110,12 +110,16 @@ TEST_CASE("media: bad media blocks and references are errors naming the place", 
 TEST_CASE("media: integrators that do not render media refuse such a scene", "[app][media]") {
   test::TempDir dir;
   dir.write("slab.json", kSlab);
-  const test::RunResult photon = test::run_caustica("render slab.json --integrator photon --spp 1 -o out.exr -q", dir);
-  CHECK(photon.exit_code != 0);
-  CHECK_THAT(photon.err, Catch::Contains("slab.json") && Catch::Contains("media") && Catch::Contains("photon"));
-  CHECK_FALSE(std::filesystem::exists(dir.file("out.exr")));
-  const test::RunResult path = test::run_caustica("render slab.json --integrator path --spp 1 -o out.exr -q", dir);
-  CHECK(path.exit_code == 0);
+  for (const char* integrator : {"photon-direct", "sppm"}) {
+    const test::RunResult r = test::run_caustica(std::string("render slab.json --integrator ") + integrator + " --spp 1 -o out.exr -q", dir);
+    CHECK(r.exit_code != 0);
+    CHECK_THAT(r.err, Catch::Contains("slab.json") && Catch::Contains("media") && Catch::Contains(integrator));
+    CHECK_FALSE(std::filesystem::exists(dir.file("out.exr")));
+  }
+  for (const char* integrator : {"path", "photon"}) {
+    const test::RunResult r = test::run_caustica(std::string("render slab.json --integrator ") + integrator + " --spp 1 -o out.exr -q", dir);
+    CHECK(r.exit_code == 0);
+  }
 }
 
 TEST_CASE("path through media: a white furnace filled with a grid medium (delta and ratio tracking) reads the "

@@ -12,6 +12,10 @@ class HomogeneousMedium final : public Medium {
   MediumEvent sample(const Ray& ray, float tmax, int channel, Sampler& sampler) const override;
   Color transmittance(const Ray& ray, float tmax, Sampler& sampler) const override;
   const PhaseFunction& phase() const override { return *phase_; }
+  bool homogeneous(Color& sigma_t, Color& sigma_s) const override {
+    sigma_t = sigma_t_, sigma_s = sigma_s_;
+    return true;
+  }
   const Color& sigma_t() const { return sigma_t_; }
   const Color& sigma_s() const { return sigma_s_; }
   static std::unique_ptr<Medium> create(const Params& p);

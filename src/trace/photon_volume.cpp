@@ -1,0 +1,141 @@
+// `photon` in participating media: the eye path's segments through media gather the volume
+// photon maps by the beam radiance estimate (Jarosz, Zwicker and Jensen 2008), one radius for
+// every photon, shrinking pass by pass as progressive photon mapping's (Jarosz et al. 2011 show
+// the beam estimate converges so); single scattering is a shadow ray from one point of the
+// segment, surfaces as in the global map's estimate mode (shadow rays, the global map).
+#include "core/media/homogeneous.h"
+#include "photon/gather.h"
+#include "trace/eye_path.h"
+#include "trace/photon_integrator.h"
+
+namespace caustica {
+namespace {
+thread_local std::vector<Neighbour> tls_media_scratch;
+}  // namespace
+
+template <class W>
+Color PhotonIntegrator::beam_estimate(const Ray& ray, float tmax, const Medium& medium, int depth, W&& weight) const {
+  const int max_bounces = settings_.max_depth - 1 - depth;
+  if (max_bounces < 1) return Color(0.0f);
+  const Vec3 wo = -ray.dir;
+  const PhaseFunction& phase = medium.phase();
+  Color sum(0.0f);
+  // Each photon's flux spread over the disc of its radius across the ray (a cylinder kernel):
+  // L = sum p(wo, wi_p) Phi_p Tr(t_p) / (pi r^2).
+  auto gather = [&](const VolumePhotonMap& map, float radius, bool skip_caustic_paths) {
+    if (map.empty() || !(radius > 0.0f)) return;
+    Color part(0.0f);
+    map.along(ray, tmax, radius, [&](uint32_t i, float t, float) {
+      const Photon& p = map.photons()[i];
+      if (p.bounces < 1 || p.bounces > max_bounces) return;
+      if (skip_caustic_paths && is_caustic_path(p)) return;
+      part += phase.eval(wo, p.incoming_dir()) * p.power() * weight(t);
+    });
+    sum += part * map.photons().flux_scale() / (kPi * radius * radius);
+  };
+  gather(volume_, volume_radius(), !volume_caustic_.empty());
+  gather(volume_caustic_, volume_caustic_radius(), false);
+  return sum;
+}
+
+Color PhotonIntegrator::trace_media_eye(const Ray& camera_ray, const Scene& scene, Sampler& sampler) const {
+  std::vector<Neighbour>& scratch = tls_media_scratch;
+  EyePath path{Color(0.0f), Color(1.0f), BsdfVertex{}, settings_.max_depth, settings_.hide_emitters};
+  Color& L = path.L;
+  Color& beta = path.beta;
+  int32_t medium = scene.camera_medium;
+  Ray ray = camera_ray;
+  int depth = 0;
+  for (int segment = 0; segment < 4 * (settings_.max_depth + 1) + 256; ++segment) {
+    SurfaceHit hit;
+    ++sampler.rays;
+    const bool found = scene.intersect(ray, hit);
+    const float s = found ? hit.t : kInfinity;
+    if (medium >= 0) {
+      const Medium& med = *scene.media[size_t(medium)];
+      const Vec3 wo = -ray.dir;
+      if (sampler.aov) sampler.aov[3] = volume_radius();  // (--aov: the volume estimate's radius)
+      Color sigma_t, sigma_s;
+      if (med.homogeneous(sigma_t, sigma_s)) {
+        // Transmittance in closed form: the photons weighted by it, the segment's end reached
+        // with it, single scattering from a point sampled equiangularly towards a light's.
+        L += beta * beam_estimate(ray, s, med, depth, [&](float t) { return beer_lambert(sigma_t, t); });
+        if (!is_black(sigma_s) && depth < settings_.max_depth)
+          L += beta * single_scattering(scene, ray, s, medium, sigma_t, sigma_s, sampler);
+        if (!found) break;
+        beta *= beer_lambert(sigma_t, s);
+        if (is_black(beta)) break;
+      } else {
+        // Free flight by delta tracking: whether the segment passes a point t is an unbiased
+        // estimate of the transmittance to it (one channel of extinction), so the photons before
+        // the flight's end count in full; where it ends the path scatters, a shadow ray there.
+        const int hero = std::min(int(sampler.next1d() * 3.0f), 2);
+        const MediumEvent event = med.sample(ray, s, hero, sampler);
+        const float end = event.scattered ? event.t : s;
+        L += beta * beam_estimate(ray, end, med, depth, [](float) { return 1.0f; });
+        if (!(event.pdf[hero] > 0.0f)) break;
+        if (event.scattered) {
+          if (depth < settings_.max_depth)
+            L += beta * event.weight / event.pdf[hero] *
+                 estimate_direct_in_medium(scene, ray.at(event.t), wo, medium, sampler, 0.0f);
+          break;
+        }
+        beta *= event.weight / event.pdf[hero];
+        if (!found || is_black(beta)) break;
+      }
+    }
+    const bool visible = !(settings_.hide_emitters && depth == 0);
+    if (!found) {
+      if (visible) L += beta * escaped_mis(scene, ray.dir, path.from);
+      break;
+    }
+    if (Scene::is_medium_boundary(hit)) {  // not a vertex: the ray goes on in the other medium
+      medium = hit.media->entered(ray.dir, hit.n);
+      ray = Ray{offset_origin(hit.p, hit.n, ray.dir), ray.dir, kInfinity};
+      continue;
+    }
+    if (visible) L += beta * emission_mis(scene, hit, scene.emitted(hit, hit.frame.to_local(-ray.dir)), path.from);
+    if (depth >= settings_.max_depth) break;
+    const Vec3 wo = -ray.dir;
+    const Bsdf& m = *hit.material;
+    if (is_gather_surface(m, settings_.glossy_threshold)) {
+      if (sampler.aov) {
+        EstimateInfo g;
+        radiance_estimate(global_, hit, wo, global_est_, scratch, &g);
+        sampler.aov[0] = float(g.photons);
+        sampler.aov[2] = g.radius;
+        sampler.aov[3] = volume_radius();  // (no surface caustic map in media)
+      }
+      // Direct light by shadow rays through the media, the rest from the global map (its
+      // photons of one bounce or more, caustics included).
+      const int nd = settings_.direct_samples;
+      const StratifiedDirect lights(sampler, nd);
+      Color direct(0.0f);
+      for (int i = 0; i < nd; ++i) direct += lights.estimate(scene, hit, wo, sampler, i, 0.0f, medium);
+      L += beta * direct / float(nd);
+      const EstimateSettings est = at_depth(global_est_, depth);
+      if (est.max_bounces >= 1) L += beta * radiance_estimate(global_, hit, wo, with_bounces(est, 1, est.max_bounces), scratch);
+      // A delta lobe beside the estimate's (plastic's coat) carries the path on.
+      BsdfSample coat;
+      if (!m.has(kBsdfSpecular) ||
+          !delta_continuation(m, hit.frame.to_local(wo), hit.sp, [&] { return sampler.next1d(); }, coat))
+        break;
+      const Vec3 wi = hit.frame.to_world(coat.wi);
+      if (hit.leaks(wi)) break;
+      beta *= coat.weight;
+      path.from = BsdfVertex{};
+      ray = spawn_ray(hit.p, hit.n, wi);
+    } else {
+      // Specular and smooth glossy surfaces: traced, a shadow ray at a glossy one (MIS against
+      // the BSDF sample that goes on).
+      if (!m.is_specular()) L += beta * estimate_direct(scene, hit, wo, sampler, 1.0f, medium);
+      if (!path.scatter(hit, wo, sampler, ray)) break;
+    }
+    if (hit.media) medium = hit.media->entered(ray.dir, hit.n);
+    ++depth;
+    if (is_black(beta)) break;
+  }
+  return L;
+}
+
+}  // namespace caustica

@@ -1,0 +1,107 @@
+// `photon` in participating media: a white furnace, fog-cornell against `path`, the volume
+// caustic map against the global map alone, and identical pixels for any thread count.
+#include <catch2/catch.hpp>
+#include <regex>
+#include "support/render_util.h"
+#include "support/run.h"
+#include "support/temp_dir.h"
+#include "trace/photon_integrator.h"
+
+using namespace caustica;
+using test::region_mean;
+using test::render_text;
+
+namespace {
+// The camera in a medium of albedo 1 inside a null sphere, within a black shell of radiance 1
+// (normals inward): the radiance is 1 everywhere (white furnace).
+std::string furnace(const std::string& fog) {
+  return R"({"camera": {"position": [0, 0, 0], "look_at": [0, 0, 1], "up": [0, 1, 0], "fov": 90, "medium": "fog"},
+    "render": {"max_depth": 1000},
+    "media": {"fog": )" + fog + R"(},
+    "materials": {"shell": {"type": "diffuse", "albedo": 0, "emission": [1, 1, 1]}, "boundary": {"type": "null"}},
+    "objects": [{"type": "sphere", "center": [0.1, -0.2, 0.1], "radius": 2, "material": "shell", "flip_normal": true},
+                {"type": "sphere", "center": [0, 0, 0], "radius": 1.2, "material": "boundary", "interior": "fog"}]})";
+}
+
+// Each 4x4 region's mean (all channels) of a against b.
+void check_regions(const Image& a, const Image& b, double tolerance) {
+  const int w = a.width, h = a.height;
+  for (int gy = 0; gy < 4; ++gy)
+    for (int gx = 0; gx < 4; ++gx) {
+      const glm::dvec3 ma = region_mean(a, gx * w / 4, gy * h / 4, (gx + 1) * w / 4, (gy + 1) * h / 4);
+      const glm::dvec3 mb = region_mean(b, gx * w / 4, gy * h / 4, (gx + 1) * w / 4, (gy + 1) * h / 4);
+      INFO("region " << gx << ", " << gy);
+      CHECK(ma.x + ma.y + ma.z == Approx(mb.x + mb.y + mb.z).epsilon(tolerance));
+    }
+}
+}  // namespace
+
+TEST_CASE("photon through media: a white furnace filled with a scattering medium reads the shell's radiance",
+          "[trace][media][photon][furnace]") {
+  // Chromatic extinction and forward scattering: the volume map's beam estimate along each
+  // camera ray, single scattering by equiangular shadow rays, the shell seen through the rest.
+  const auto r = render_text(furnace(R"({"type": "homogeneous", "sigma_t": [0.4, 1.0, 2.5], "albedo": 1,
+                                          "phase": {"type": "hg", "g": 0.6}})"),
+                             "photon", R"({"photons": 30000})", 64, 24, 24);
+  const Color mean = r.image.mean();
+  for (int c = 0; c < 3; ++c) CHECK(mean[c] == Approx(1.0).epsilon(0.03));
+  CHECK(r.stats.bad_samples == 0);
+}
+
+TEST_CASE("photon through media: fog-cornell within 3 % of path in the mean and 6 % per 4x4 region",
+          "[trace][media][photon]") {
+  const std::string scene = test::read_scene_file("scenes/fog-cornell.json");
+  const auto path = render_text(scene, "path", "{}", 1024, 64, 64);
+  // Smaller first radii than the defaults': 64 passes at 64x64 are far fewer photons than a
+  // render's, and the discs' bias (darker corners) is what this test is not about.
+  const auto photon = render_text(scene, "photon", R"({"photons": 50000, "global_radius": 15, "volume_radius": 4})", 64, 64, 64);
+  const Color a = photon.image.mean(), b = path.image.mean();
+  CHECK(b.x > 0.05f);
+  CHECK(a.x + a.y + a.z == Approx(b.x + b.y + b.z).epsilon(0.03));
+  check_regions(photon.image, path.image, 0.06);
+  CHECK(photon.stats.bad_samples == 0);
+}
+
+TEST_CASE("photon through media: the volume caustic map and the global map alone render the same volume caustic",
+          "[trace][media][photon]") {
+  // A spot light through a glass ball into fog: the focused cone of light beneath it comes from
+  // the volume caustic map (photons aimed at the ball), or without one from the global map's
+  // photons of such paths; the two split the light differently and must add up alike. A path
+  // tracer finds no light through glass from a point light: its image is far darker.
+  const std::string scene = test::read_scene_file("scenes/volumetric-caustic.json");
+  const auto split = render_text(scene, "photon", R"({"photons": 30000, "caustic_photons": 10000})", 48, 64, 64);
+  const auto global = render_text(scene, "photon", R"({"photons": 30000, "caustic_photons": 0})", 48, 64, 64);
+  check_regions(split.image, global.image, 0.03);
+  const auto path = render_text(scene, "path", "{}", 64, 64, 64);
+  // The cone under the ball, (28..36, 36..44) of 64x64: lit through the ball alone.
+  const glm::dvec3 cone = region_mean(split.image, 28, 36, 36, 44), path_cone = region_mean(path.image, 28, 36, 36, 44);
+  CHECK(cone.x > 4.0 * path_cone.x);
+}
+
+TEST_CASE("photon through media: identical pixels for 1 and 2 threads", "[trace][media][photon][determinism]") {
+  const std::string scene = test::read_scene_file("scenes/volumetric-caustic.json");
+  const auto one = render_text(scene, "photon", R"({"photons": 5000, "caustic_photons": 5000})", 3, 24, 24, 9, 1);
+  const auto two = render_text(scene, "photon", R"({"photons": 5000, "caustic_photons": 5000})", 3, 24, 24, 9, 2);
+  CHECK(one.image.mean().x > 0.001f);
+  CHECK(one.image.pixels == two.image.pixels);
+}
+
+TEST_CASE("photons command: --map volume splats the volume photons; a scene without media says it has none",
+          "[app][media][photon]") {
+  test::TempDir dir;
+  const std::string vc = std::string(CAUSTICA_SOURCE_DIR) + "/scenes/volumetric-caustic.json";
+  const auto r = test::run_caustica("photons '" + vc + "' --map volume --photons 3000 --caustic-photons 3000 --width 48 --height 48 -o v.png", dir);
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  CHECK_THAT(r.out, Catch::Contains("in volume maps"));
+  // Most volume photons lie in the spot's cone, in front of the back wall: seen by the camera.
+  std::smatch m;
+  REQUIRE(std::regex_search(r.out, m, std::regex("visible from the camera: (\\d+)")));
+  CHECK(std::stoul(m[1]) > 1000);
+  CHECK(std::filesystem::exists(dir.file("v.png")));
+  const std::string box = std::string(CAUSTICA_SOURCE_DIR) + "/scenes/cornell-box.json";
+  const auto none = test::run_caustica("photons '" + box + "' --map volume --photons 1000 --width 16 --height 16 -o n.png", dir);
+  CHECK(none.exit_code != 0);
+  CHECK_THAT(none.err, Catch::Contains("cornell-box.json") && Catch::Contains("no participating media"));
+  CHECK_FALSE(std::filesystem::exists(dir.file("n.png")));
+}
