@@ -30,6 +30,8 @@ $C render scenes/caustic-ring.json --integrator photon --width 400 --height 400 
   -o "$out/caustic-ring.png"
 $C render scenes/material-spheres.json --integrator photon --width 816 --height 272 --spp 32 --seed 1 -q \
   -o "$out/material-spheres.png"
+$C render scenes/volumetric-caustic.json --integrator photon --width 400 --height 400 --spp 64 --seed 1 -q \
+  -o "$out/volumetric-caustic.png"
 $C render scenes/mitsuba/principled.xml --integrator photon --width 640 --height 360 --spp 32 --seed 1 -q \
   -o "$out/mitsuba-principled.png"
 

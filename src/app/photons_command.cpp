@@ -28,11 +28,19 @@ bool visible_from_camera(const Scene& scene, const Photon& ph, bool volume) {
   const Vec3 eye = scene.camera.eye_for(ph.position);
   const Vec3 n = volume ? Vec3(0.0f) : ph.surface_normal();
   if (!volume && glm::dot(n, eye - ph.position) <= 0) return false;  // seen from behind its surface
-  const Ray ray = spawn_ray_to(eye, Vec3(0.0f), ph.position, n);
+  Ray ray = spawn_ray_to(eye, Vec3(0.0f), ph.position, n);
   if (!scene.has_media()) return !scene.occluded(ray);
-  // Through media boundaries, not through surfaces (the media's own attenuation aside).
-  Sampler sampler(0);
-  return !is_black(scene.transmittance(ray, -1, sampler));
+  // Through media boundaries (null surfaces), not through other surfaces; the media's own
+  // attenuation aside.
+  for (int crossing = 0; crossing < 256; ++crossing) {
+    SurfaceHit hit;
+    if (!scene.intersect(ray, hit)) return true;
+    if (!Scene::is_medium_boundary(hit)) return false;
+    const Vec3 origin = offset_origin(hit.p, hit.n, ray.dir);
+    ray = Ray{origin, ray.dir, ray.tmax - glm::length(origin - ray.origin)};
+    if (!(ray.tmax > 0.0f)) return true;
+  }
+  return false;
 }
 }  // namespace
 

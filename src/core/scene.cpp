@@ -97,7 +97,22 @@ int32_t Scene::medium_at(const Vec3& p, const Vec3& dir) const {
     if (hit.media) return glm::dot(dir, hit.n) < 0.0f ? hit.media->exterior : hit.media->interior;
     ray = Ray{offset_origin(hit.p, hit.n, dir), dir, kInfinity};
   }
-  return camera_medium;
+  return outside_medium();
+}
+
+int32_t Scene::outside_medium() const {
+  if (!has_media()) return -1;
+  if (interfaces.empty()) return camera_medium;  // (a medium without bounds fills the scene)
+  // From outside the scene's box towards its centre: the first boundary's outer side.
+  const Vec3 c = bounds().centre(), dir = glm::normalize(Vec3(0.267f, 0.535f, 0.802f));
+  Ray ray{c - dir * (glm::length(bounds().extent()) + 1.0f), dir, kInfinity};
+  for (int crossing = 0; crossing < 256; ++crossing) {
+    SurfaceHit hit;
+    if (!intersect(ray, hit)) break;
+    if (hit.media) return glm::dot(dir, hit.n) < 0.0f ? hit.media->exterior : hit.media->interior;
+    ray = Ray{offset_origin(hit.p, hit.n, dir), dir, kInfinity};
+  }
+  return -1;
 }
 
 bool Scene::intersect_opaque(const Ray& ray, SurfaceHit& hit) const {

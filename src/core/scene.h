@@ -85,9 +85,12 @@ class Scene {
   // 0 or 1 as occluded() says.
   Color transmittance(const Ray& ray, int32_t medium, Sampler& sampler) const;
   // The medium at point p (-1: none): the near side of the first surface bounding media that a
-  // ray from p along dir meets; the camera's medium where none is met (the space outside every
-  // boundary). Light sources use it for the medium their photons start in.
+  // ray from p along dir meets; where none is met, outside_medium(). Light sources use it for
+  // the medium their photons start in.
   int32_t medium_at(const Vec3& p, const Vec3& dir) const;
+  // The medium outside every boundary: the outer side of the first one met from outside the
+  // scene; the camera's where no surface bounds media (it then fills the scene).
+  int32_t outside_medium() const;
   // A surface that bounds media and is not there for light (null BSDF): rays pass it.
   static bool is_medium_boundary(const SurfaceHit& hit) { return hit.media && hit.material->opacity(hit.sp) <= 0.0f; }
   // Chooses a light for a shadow ray from p (shading normal n), by render.light_sampler;

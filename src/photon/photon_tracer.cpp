@@ -8,6 +8,7 @@
 #include "core/memory.h"
 #include "core/sampler.h"
 #include "photon/gather.h"
+#include "photon/volume_map.h"
 
 namespace caustica {
 namespace {
@@ -20,6 +21,7 @@ struct PendingPhoton {
   Color flux;  // before division by the number emitted
   Vec3 incoming, normal;
   int bounces;
+  uint16_t volume_tag = 0;  // a volume photon's medium and caustic-path mark (volume_photon_tag)
 };
 
 // A photon leaves an area light offset from its surface; a point light has no surface.
@@ -48,7 +50,7 @@ class Emitter {
     // point of it stands for all), a point light's where it is, an environment's outside all.
     if (scene.has_media()) {
       for (const auto& light : scene.lights) {
-        int32_t medium = scene.interfaces.empty() ? scene.camera_medium : -1;
+        int32_t medium = scene.outside_medium();
         if (!light->is_infinite()) {
           const LightPoint o = light->sample_origin(Vec2(0.5f));
           const bool surface = glm::dot(o.n, o.n) > 0.0f;
@@ -180,10 +182,11 @@ void trace_photon(const Scene& scene, Ray ray, Color flux, int32_t medium, bool 
         const Vec3 p = ray.at(event.t), wo = -ray.dir;
         const bool caustic_path = specular_path && specular_bounces > 0;
         if (caustic) {
-          if (caustic_path) volume.push_back({p, st.flux(), wo, Vec3(0.0f, 0.0f, 1.0f), depth});
+          if (caustic_path) volume.push_back({p, st.flux(), wo, Vec3(0.0f), depth, volume_photon_tag(medium, true)});
           return;
         }
-        volume.push_back({p, st.flux(), wo, Vec3(0.0f, 0.0f, caustic_path ? 1.0f : -1.0f), depth});
+        // (Not the photons straight from a light: single scattering is the eye's shadow rays'.)
+        if (depth > 0) volume.push_back({p, st.flux(), wo, Vec3(0.0f), depth, volume_photon_tag(medium, caustic_path)});
         specular_path = false;
         // Russian roulette by the scattering albedo (the weight's ratio to the hero density).
         const float survive = std::min(1.0f, max_component(event.weight) / event.pdf[hero]);
@@ -211,6 +214,9 @@ void trace_photon(const Scene& scene, Ray ray, Color flux, int32_t medium, bool 
       const Vec3 n_side = wo_l.z >= 0 ? hit.n : -hit.n;
       if (caustic) {
         if (specular_bounces > 0 && !s.caustic_volume_only) out.push_back({hit.p, st.flux(), wo, n_side, depth});
+        // Past a gather surface the path is not L S+ V (as for global photons, which mark no
+        // volume photon after one as a caustic path).
+        specular_path = false;
         // The caustic map keeps only L S+ D: the photon goes on only along a delta lobe of this
         // surface (plastic's coat), which is not part of the estimate stored here.
         BsdfSample coat;
@@ -260,7 +266,7 @@ bool stop_requested(const PhotonPassSettings& s) { return s.cancel && s.cancel->
 // flux / flux_scale, near 1, where half floats are most precise. The mean sums per chunk in
 // parallel, then the chunk sums in order: the same for any thread count.
 std::vector<Photon> normalise(const std::vector<std::vector<PendingPhoton>>& chunks, uint64_t emitted,
-                              float& flux_scale) {
+                              float& flux_scale, bool volume = false) {
   std::vector<size_t> at(chunks.size() + 1, 0);
   for (size_t c = 0; c < chunks.size(); ++c) at[c + 1] = at[c] + chunks[c].size();
   const size_t stored = at.back();
@@ -278,6 +284,7 @@ std::vector<Photon> normalise(const std::vector<std::vector<PendingPhoton>>& chu
     for (size_t k = 0; k < chunks[c].size(); ++k) {
       const PendingPhoton& p = chunks[c][k];
       result[at[c] + k] = Photon::make(p.position, p.flux * inv, p.incoming, p.normal, p.bounces);
+      if (volume) result[at[c] + k].normal = p.volume_tag;
     }
   });
   return result;
@@ -307,7 +314,7 @@ std::vector<Photon> run_map(const Scene& scene, const PhotonPassSettings& s, boo
   // Each chunk's stored photons, in photon-index order, trimmed to what the wanted count keeps.
   std::vector<std::vector<PendingPhoton>> chunks, volume_chunks;
   const bool media = scene.has_media();
-  size_t stored = 0;
+  size_t stored = 0, stored_volume = 0;
   uint64_t emitted = 0;
   uint64_t chunks_in_round = 8;
   bool done = false;
@@ -350,7 +357,9 @@ std::vector<Photon> run_map(const Scene& scene, const PhotonPassSettings& s, boo
         if (media) keep_volume += chunk_volume_counts[c][taken];
         ++taken;
         ++emitted;
-        if (stored + keep >= wanted || emitted >= cap) {
+        // (In dense media a path stores many scattering points: their map stops at
+        // PhotonPassSettings::kVolumeShare times the wanted count, so that memory stays bounded.)
+        if (stored + keep >= wanted || emitted >= cap || stored_volume + keep_volume >= PhotonPassSettings::kVolumeShare * wanted) {
           done = true;
           break;
         }
@@ -361,6 +370,7 @@ std::vector<Photon> run_map(const Scene& scene, const PhotonPassSettings& s, boo
       stored += caustic && s.caustic_volume_only ? keep_volume : keep;
       chunks.push_back(std::move(chunk_out[c]));
       volume_chunks.push_back(std::move(chunk_volume[c]));
+      stored_volume += keep_volume;
     }
     if (stop_requested(s)) break;
     // Size the next round from the storage rate seen so far (deterministic).
@@ -378,7 +388,7 @@ std::vector<Photon> run_map(const Scene& scene, const PhotonPassSettings& s, boo
                        (caustic ? "the specular objects" : "diffuse surfaces"));
   }
   emitted_out = emitted;
-  volume_out = normalise(volume_chunks, emitted, volume_scale);
+  volume_out = normalise(volume_chunks, emitted, volume_scale, true);
   return normalise(chunks, emitted, flux_scale);
 }
 

@@ -19,6 +19,8 @@ struct PhotonPassSettings {
   // In media: the caustic emission stores only the first scattering point of L S+ V paths (the
   // volume caustic map), and counts those towards caustic_photons.
   bool caustic_volume_only = false;
+  // In media, a pass stops once its volume photons number this times global_photons.
+  static constexpr size_t kVolumeShare = 8;
   uint64_t seed = 0;
   const std::atomic<bool>* cancel = nullptr;  // once set, the pass stops within a chunk and keeps no photons
 };

@@ -9,6 +9,7 @@ void VolumePhotonMap::build(std::vector<Photon> photons, float flux_scale) {
   if (map_.empty()) return;
   nodes_.reserve(2 * (map_.size() / kLeafSize + 1));
   build_node(0, uint32_t(map_.size()));
+  nodes_.shrink_to_fit();
 }
 
 // Halves of the Morton order: each is a compact region, so halving ranges gives a hierarchy

@@ -2,6 +2,7 @@
 // participating media, searched along rays for the beam radiance estimate (Jarosz, Zwicker and
 // Jensen 2008) with one radius for every photon (progressive: it shrinks pass by pass).
 #pragma once
+#include <algorithm>
 #include <vector>
 #include "core/math.h"
 #include "photon/photon_map.h"
@@ -9,9 +10,15 @@
 namespace caustica {
 
 // A volume photon's record is a Photon: position, flux, the direction it came from (incoming),
-// the scattering events before it (bounces); its normal marks whether its path reached the
-// medium through caustic surfaces alone (L S+ V), which a volume caustic map holds as well.
-inline bool is_caustic_path(const Photon& p) { return p.surface_normal().z > 0.0f; }
+// the scattering events before it (bounces); its normal field holds, in place of a direction,
+// the medium it scattered in (an estimate along a ray gathers its own medium's photons only)
+// and whether its path reached the medium through caustic surfaces alone (L S+ V), which a
+// volume caustic map holds as well.
+inline uint16_t volume_photon_tag(int32_t medium, bool caustic_path) {
+  return uint16_t((uint32_t(std::clamp(medium, 0, 32767)) << 1) | (caustic_path ? 1u : 0u));
+}
+inline bool is_caustic_path(const Photon& p) { return (p.normal & 1u) != 0; }
+inline int32_t photon_medium(const Photon& p) { return int32_t(p.normal >> 1); }
 
 class VolumePhotonMap {
  public:
@@ -82,7 +89,8 @@ void VolumePhotonMap::along(const Ray& ray, float tmax, float radius, F&& f) con
       const Vec3 d = map_[i].position - ray.origin;
       const float t = glm::dot(d, ray.dir);
       if (t < 0.0f || t > tmax) continue;
-      const float d2 = std::max(0.0f, glm::dot(d, d) - t * t);
+      const Vec3 off = d - t * ray.dir;  // (not |d|^2 - t^2: that cancels far from the origin)
+      const float d2 = glm::dot(off, off);
       if (d2 < r2) f(i, t, d2);
     }
   }

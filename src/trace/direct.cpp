@@ -129,8 +129,10 @@ Color single_scattering(const Scene& scene, const Ray& ray, float tmax, int32_t 
   const float u_light = sampler.next1d();
   const Vec2 u = sampler.next2d();
   const float u_t = sampler.next1d();
+  // By power: the light sampler's choice at one point (the ray's origin) would miss a spot
+  // whose cone the segment crosses farther on.
   float pmf = 0.0f;
-  const Light* light = scene.sample_light(ray.origin, Vec3(0.0f), u_light, pmf);
+  const Light* light = scene.sample_photon_light(u_light, pmf);
   if (!light || !(pmf > 0.0f)) return Color(0.0f);
   const PhaseFunction& phase = scene.media[size_t(medium)]->phase();
   const Vec3 wo = -ray.dir;
@@ -151,7 +153,8 @@ Color single_scattering(const Scene& scene, const Ray& ray, float tmax, int32_t 
     if (!(lp.pdf > 0.0f)) return Color(0.0f);
     // A spot sends nothing outside its cone: t is sampled only where the ray is inside it.
     float lo = 0.0f, hi = tmax;
-    const LightBounds lb = light->light_bounds();
+    // (Delta lights alone: an area light's bounds loop over its triangles.)
+    const LightBounds lb = light->is_delta() ? light->light_bounds() : LightBounds{};
     if (lb.cos_theta_e >= 1.0f && lb.normals.cos_theta > 0.0f && lb.bounds.lo == lb.bounds.hi &&
         !clip_to_cone(ray, tmax, lb.bounds.lo, lb.normals.axis, lb.normals.cos_theta, lo, hi))
       return Color(0.0f);

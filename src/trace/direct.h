@@ -23,8 +23,7 @@ Color estimate_direct_in_medium(const Scene& scene, const Vec3& p, const Vec3& w
 
 // Single scattering towards -ray.dir along [0, tmax] (tmax may be infinite) of ray inside a
 // homogeneous medium (sigma_t, sigma_s, its phase function): the integral of Tr(t) sigma_s
-// times the light scattered at t, by one light (chosen by the light sampler at the ray's
-// origin), one point on it, and t by equiangular sampling towards that point (Kulla and
+// times the light scattered at t, by one light (chosen by power, as photons are), one point on it, and t by equiangular sampling towards that point (Kulla and
 // Fajardo 2012: the density follows 1 / distance^2, so a light close to the ray adds no
 // fireflies), the shadow ray through the media from t. A light at infinity takes t by the
 // mean extinction instead.

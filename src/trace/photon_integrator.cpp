@@ -166,6 +166,7 @@ void PhotonIntegrator::preprocess(const Scene& scene, const PreprocessContext& c
   preprocess_start_ = std::chrono::steady_clock::now();
   horizon_work_ = -1;
   volume_r1_ = volume_caustic_r1_ = 0.0f;
+  volume_radii_set_ = false;
   volume_radius2_scale_ = 1.0f;
   horizon_seconds_ = 0;
   const size_t for_image = PhotonSettings::photons_for_image(scene.camera.width(), scene.camera.height());
@@ -182,7 +183,9 @@ void PhotonIntegrator::preprocess(const Scene& scene, const PreprocessContext& c
     settings_.gather_rays_given = settings_.direct_samples_given = settings_.glossy_direct_samples_given = true;
     settings_.final_gather_given = settings_.caustic_threshold_given = true;
   }
-  check_photon_memory(settings_.photons + (final_gather_ ? settings_.caustic_photons : 0));
+  // (In media the volume map may hold up to kVolumeShare times the global photons.)
+  const size_t volume_share = scene.has_media() ? PhotonPassSettings::kVolumeShare : 0;
+  check_photon_memory(settings_.photons * (1 + volume_share) + (final_gather_ ? settings_.caustic_photons : 0));
   global_est_.k = size_t(settings_.global_k);
   caustic_est_.k = size_t(settings_.caustic_k);
   caustic_est_.cone_filter = true;
@@ -297,12 +300,18 @@ bool PhotonIntegrator::build_maps(const Scene& scene, uint64_t seed, const Prepr
                          [&] { volume_caustic_.build(std::move(r.volume_caustic), r.volume_caustic_scale); });
     stats_.build_seconds += seconds_since(t0);
     stats_.volume_bytes = volume_.memory_bytes() + volume_caustic_.memory_bytes();
-    // The first radii from the first maps (each map its own: a volume caustic is far denser).
-    if (volume_r1_ <= 0.0f)
-      volume_r1_ = settings_.volume_radius > 0 ? settings_.volume_radius : volume_.median_knn_radius(size_t(settings_.volume_k));
-    if (volume_caustic_r1_ <= 0.0f)
-      volume_caustic_r1_ = settings_.volume_radius > 0 ? settings_.volume_radius
-                                                       : volume_caustic_.median_knn_radius(size_t(settings_.volume_k));
+    // The first radii from the first maps, pass 0's on every rank (each map its own: a volume
+    // caustic is far denser); a map too sparse for one takes the other's, or a hundredth of the
+    // scene's size.
+    if (!volume_radii_set_) {
+      volume_radii_set_ = true;
+      const size_t k = size_t(settings_.volume_k);
+      volume_r1_ = settings_.volume_radius > 0 ? settings_.volume_radius : volume_.median_knn_radius(k);
+      volume_caustic_r1_ = settings_.volume_radius > 0 ? settings_.volume_radius : volume_caustic_.median_knn_radius(k);
+      const float fallback = 0.005f * glm::length(scene.bounds().extent());
+      if (!(volume_r1_ > 0.0f)) volume_r1_ = volume_caustic_r1_ > 0.0f ? volume_caustic_r1_ : fallback;
+      if (!(volume_caustic_r1_ > 0.0f)) volume_caustic_r1_ = volume_r1_;
+    }
   }
 
   return !(context.cancel && context.cancel->load());

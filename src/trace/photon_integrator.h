@@ -265,9 +265,10 @@ class PhotonIntegrator final : public Integrator {
   // vertex `depth`: volume photons of one bounce or more, each weighted by `weight(t)` (the
   // transmittance to it).
   template <class W>
-  Color beam_estimate(const Ray& ray, float tmax, const Medium& medium, int depth, W&& weight) const;
+  Color beam_estimate(const Ray& ray, float tmax, const Scene& scene, int32_t medium, int depth, W&& weight) const;
   VolumePhotonMap volume_, volume_caustic_;
   float volume_r1_ = 0, volume_caustic_r1_ = 0, volume_radius2_scale_ = 1;
+  bool volume_radii_set_ = false;
   IrradianceCache irradiance_;
   EstimateSettings global_est_, caustic_est_;
   float global_r1_ = 0, caustic_r1_ = 0;  // progressive: the first pass's radii

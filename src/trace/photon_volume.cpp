@@ -14,11 +14,12 @@ thread_local std::vector<Neighbour> tls_media_scratch;
 }  // namespace
 
 template <class W>
-Color PhotonIntegrator::beam_estimate(const Ray& ray, float tmax, const Medium& medium, int depth, W&& weight) const {
+Color PhotonIntegrator::beam_estimate(const Ray& ray, float tmax, const Scene& scene, int32_t medium, int depth,
+                                      W&& weight) const {
   const int max_bounces = settings_.max_depth - 1 - depth;
   if (max_bounces < 1) return Color(0.0f);
   const Vec3 wo = -ray.dir;
-  const PhaseFunction& phase = medium.phase();
+  const PhaseFunction& phase = scene.media[size_t(medium)]->phase();
   Color sum(0.0f);
   // Each photon's flux spread over the disc of its radius across the ray (a cylinder kernel):
   // L = sum p(wo, wi_p) Phi_p Tr(t_p) / (pi r^2).
@@ -27,13 +28,15 @@ Color PhotonIntegrator::beam_estimate(const Ray& ray, float tmax, const Medium& 
     Color part(0.0f);
     map.along(ray, tmax, radius, [&](uint32_t i, float t, float) {
       const Photon& p = map.photons()[i];
-      if (p.bounces < 1 || p.bounces > max_bounces) return;
+      // (Only this medium's photons: a neighbouring medium's, or one behind a wall, lie within
+      // the radius too.)
+      if (p.bounces < 1 || p.bounces > max_bounces || photon_medium(p) != medium) return;
       if (skip_caustic_paths && is_caustic_path(p)) return;
       part += phase.eval(wo, p.incoming_dir()) * p.power() * weight(t);
     });
     sum += part * map.photons().flux_scale() / (kPi * radius * radius);
   };
-  gather(volume_, volume_radius(), !volume_caustic_.empty());
+  gather(volume_, volume_radius(), !volume_caustic_.empty() && volume_caustic_radius() > 0.0f);
   gather(volume_caustic_, volume_caustic_radius(), false);
   return sum;
 }
@@ -59,11 +62,11 @@ Color PhotonIntegrator::trace_media_eye(const Ray& camera_ray, const Scene& scen
       if (med.homogeneous(sigma_t, sigma_s)) {
         // Transmittance in closed form: the photons weighted by it, the segment's end reached
         // with it, single scattering from a point sampled equiangularly towards a light's.
-        L += beta * beam_estimate(ray, s, med, depth, [&](float t) { return beer_lambert(sigma_t, t); });
-        if (!is_black(sigma_s) && depth < settings_.max_depth)
-          L += beta * single_scattering(scene, ray, s, medium, sigma_t, sigma_s, sampler);
-        if (!found) break;
-        beta *= beer_lambert(sigma_t, s);
+        if (!is_black(sigma_s)) {
+          L += beta * beam_estimate(ray, s, scene, medium, depth, [&](float t) { return beer_lambert(sigma_t, t); });
+          if (depth < settings_.max_depth) L += beta * single_scattering(scene, ray, s, medium, sigma_t, sigma_s, sampler);
+        }
+        beta *= beer_lambert(sigma_t, s);  // (0 past an infinite segment where sigma_t > 0)
         if (is_black(beta)) break;
       } else {
         // Free flight by delta tracking: whether the segment passes a point t is an unbiased
@@ -72,7 +75,7 @@ Color PhotonIntegrator::trace_media_eye(const Ray& camera_ray, const Scene& scen
         const int hero = std::min(int(sampler.next1d() * 3.0f), 2);
         const MediumEvent event = med.sample(ray, s, hero, sampler);
         const float end = event.scattered ? event.t : s;
-        L += beta * beam_estimate(ray, end, med, depth, [](float) { return 1.0f; });
+        L += beta * beam_estimate(ray, end, scene, medium, depth, [](float) { return 1.0f; });
         if (!(event.pdf[hero] > 0.0f)) break;
         if (event.scattered) {
           if (depth < settings_.max_depth)
@@ -81,7 +84,7 @@ Color PhotonIntegrator::trace_media_eye(const Ray& camera_ray, const Scene& scen
           break;
         }
         beta *= event.weight / event.pdf[hero];
-        if (!found || is_black(beta)) break;
+        if (is_black(beta)) break;
       }
     }
     const bool visible = !(settings_.hide_emitters && depth == 0);

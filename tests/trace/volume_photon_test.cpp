@@ -2,6 +2,7 @@
 // caustic map against the global map alone, and identical pixels for any thread count.
 #include <catch2/catch.hpp>
 #include <regex>
+#include "io/scene_loader.h"
 #include "support/render_util.h"
 #include "support/run.h"
 #include "support/temp_dir.h"
@@ -104,4 +105,50 @@ TEST_CASE("photons command: --map volume splats the volume photons; a scene with
   CHECK(none.exit_code != 0);
   CHECK_THAT(none.err, Catch::Contains("cornell-box.json") && Catch::Contains("no participating media"));
   CHECK_FALSE(std::filesystem::exists(dir.file("n.png")));
+}
+
+TEST_CASE("photon through media: a camera ray leaving the scene inside a medium sees the environment through it",
+          "[trace][media][photon]") {
+  // An unbounded medium that attenuates green only, around the camera, under a constant sky of
+  // radiance 1: red and blue read 1, green 0 (its transmittance to infinity).
+  const std::string scene = R"({"camera": {"position": [0, 0, 0], "look_at": [0, 0, 1], "up": [0, 1, 0], "fov": 40, "medium": "ink"},
+    "media": {"ink": {"type": "homogeneous", "sigma_t": [0, 0.3, 0], "albedo": 0}},
+    "materials": {"grey": {"type": "diffuse", "albedo": 0.5}},
+    "objects": [{"type": "sphere", "center": [0, -100, 0], "radius": 1, "material": "grey"}],
+    "lights": [{"type": "constant", "radiance": 1}]})";
+  for (const char* integrator : {"photon", "path"}) {
+    INFO(integrator);
+    const Color mean = render_text(scene, integrator, "{}", 2, 8, 8).image.mean();
+    CHECK(mean.x == Approx(1.0f).epsilon(1e-4));
+    CHECK(mean.y == Approx(0.0f).margin(1e-6));
+    CHECK(mean.z == Approx(1.0f).epsilon(1e-4));
+  }
+}
+
+TEST_CASE("scene: the medium at a point, inside and outside a boundary, and the medium outside every boundary",
+          "[core][media]") {
+  const std::string inner = R"({"camera": {"position": [0, 0, -5], "look_at": [0, 0, 0]},
+    "media": {"fog": {"type": "homogeneous", "sigma_t": 1}, "haze": {"type": "homogeneous", "sigma_t": 0.1}},
+    "materials": {"m": {"type": "null"}},
+    "objects": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "m", "interior": "fog", "exterior": "haze"},
+                {"type": "sphere", "center": [5, 0, 0], "radius": 1, "material": "m", "interior": "fog"}]})";
+  LoadedScene loaded = parse_scene(inner, "s.json", ".");
+  const Scene& scene = *loaded.scene;
+  const Vec3 up(0.0f, 1.0f, 0.0f);
+  const int32_t fog = scene.medium_at(Vec3(0.0f), up);
+  REQUIRE(fog >= 0);
+  CHECK(scene.medium_at(Vec3(5.0f, 0.0f, 0.0f), up) == fog);
+  const int32_t haze = scene.medium_at(Vec3(0.0f, 0.0f, -2.0f), Vec3(0.0f, 0.0f, 1.0f));  // (meets the first sphere's outside)
+  CHECK(haze >= 0);
+  CHECK(haze != fog);
+  // Downwards from there no boundary is met: the medium outside every boundary, which the probe
+  // from outside the scene finds none of (it passes between the spheres): vacuum.
+  CHECK(scene.outside_medium() == -1);
+  CHECK(scene.medium_at(Vec3(0.0f, 0.0f, -2.0f), -up) == -1);
+  // A medium around the camera that no surface bounds fills the scene.
+  LoadedScene open = parse_scene(R"({"camera": {"position": [0, 0, -5], "look_at": [0, 0, 0], "medium": "fog"},
+    "media": {"fog": {"type": "homogeneous", "sigma_t": 1}}, "materials": {"m": {"type": "diffuse"}},
+    "objects": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "m"}]})", "o.json", ".");
+  CHECK(open.scene->outside_medium() == open.scene->camera_medium);
+  CHECK(open.scene->medium_at(Vec3(0.0f, 0.0f, -3.0f), Vec3(0.0f, 0.0f, -1.0f)) == open.scene->camera_medium);
 }
