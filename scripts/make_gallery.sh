@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Renders the README's gallery into docs/images/ (about 9 minutes on 2 cores, most of it the
+# Renders the README's gallery into docs/images/ (about 10 minutes on 2 cores, most of it the
 # path-traced reference, which is kept in build/gallery/ and reused by later runs).
 # Usage: bash scripts/make_gallery.sh [--fresh]   (--fresh renders the reference again)
 set -euo pipefail
