@@ -162,3 +162,52 @@ TEST_CASE("path through media: identical pixels for 1 and 2 threads", "[trace][m
   CHECK(one.image.mean().x > 0.1f);
   CHECK(one.image.pixels == two.image.pixels);
 }
+
+namespace {
+// Transmittance (uncollided and scattered) of a plane-parallel slab of optical thickness tau,
+// isotropic scattering of this albedo, under a beam at normal incidence: a one-dimensional
+// random walk of the direction cosine, independent of the renderer's code.
+double slab_transmittance(double tau, double albedo, int walks, uint64_t seed) {
+  Rng rng(seed);
+  double through = 0.0;
+  for (int i = 0; i < walks; ++i) {
+    double z = 0.0, mu = 1.0, w = 1.0;  // depth in optical units, cosine to the downward normal
+    for (int event = 0; event < 100000; ++event) {
+      z += mu * -std::log(1.0 - double(rng.next_float()) * 0.99999999);
+      if (z >= tau) {
+        through += w;
+        break;
+      }
+      if (z < 0.0) break;
+      w *= albedo;
+      mu = 2.0 * double(rng.next_float()) - 1.0;
+    }
+  }
+  return through / walks;
+}
+}  // namespace
+
+TEST_CASE("path through media: a scattering slab transmits what a one-dimensional random walk gives",
+          "[trace][media][slab]") {
+  // A slab 1 thick (sigma_t 1) between null boundaries at y = 1 and 2, under a directional light
+  // of irradiance 1 straight down; the camera between the slab and a floor of albedo 0.001 (its
+  // light sent back up and returned is 1e-3 of the total): L = 0.001 / pi * T.
+  for (const double albedo : {1.0, 0.7}) {
+    const std::string scene = R"({"camera": {"position": [0, 0.5, 0], "look_at": [0, 0, 0], "up": [0, 0, 1], "fov": 10},
+      "render": {"max_depth": 1000},
+      "media": {"fog": {"type": "homogeneous", "sigma_t": 1, "albedo": )" + std::to_string(albedo) + R"(}},
+      "materials": {"floor": {"type": "diffuse", "reflectance": 0.001}, "boundary": {"type": "null"}},
+      "objects": [{"type": "quad", "origin": [-100, 0, -100], "edge1": [0, 0, 200], "edge2": [200, 0, 0], "material": "floor"},
+                  {"type": "quad", "origin": [-100, 1, -100], "edge1": [200, 0, 0], "edge2": [0, 0, 200], "material": "boundary", "interior": "fog"},
+                  {"type": "quad", "origin": [-100, 2, -100], "edge1": [0, 0, 200], "edge2": [200, 0, 0], "material": "boundary", "interior": "fog"}],
+      "lights": [{"type": "directional", "direction": [0, -1, 0], "irradiance": 1}]})";
+    const double T = slab_transmittance(1.0, albedo, 1000000, 5);
+    INFO("albedo " << albedo << ": T " << T);
+    // (Uncollided alone: e^-1 = 0.368; scattering adds to it.)
+    CHECK(T > std::exp(-1.0) + 0.05);
+    // No Russian roulette: after the dark floor it would keep one path in a thousand at a
+    // thousand times the weight, a mean that converges from below over millions of samples.
+    const Color mean = render_text(scene, "path", R"({"rr_depth": 1000})", 256, 8, 8).image.mean();
+    CHECK((mean.x + mean.y + mean.z) / 3.0 == Approx(0.001 / double(kPi) * T).epsilon(0.02));
+  }
+}
