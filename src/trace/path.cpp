@@ -98,6 +98,9 @@ Color trace_volume_path(const Ray& camera_ray, const Scene& scene, Sampler& samp
     if (!hit.material->is_specular()) L += throughput() * estimate_direct(scene, hit, wo, sampler, 1.0f, medium);
     if (!path.scatter(hit, wo, sampler, ray)) break;
     if (hit.media) medium = hit.media->entered(ray.dir, hit.n);
+    // A delta transmission that keeps the direction (thindielectric's) is not a bounce, as
+    // Mitsuba's volpath counts it (its lobe is a null one there).
+    if (path.from.specular && glm::dot(ray.dir, -wo) > 1.0f - 1e-6f) continue;
     ++depth;
     if (!survives()) break;
   }
