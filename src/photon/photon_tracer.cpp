@@ -142,15 +142,6 @@ class Emitter {
   std::unordered_map<const Light*, int32_t> light_medium_;
 };
 
-// Where a photon path stands: its throughput is beta / mean(r), r per channel the density of
-// its medium events had that channel been the one sampled (the hero channel samples them all:
-// spectral MIS over the path, as trace_volume_path). Without media r stays 1.
-struct PhotonState {
-  Color beta;
-  Color r{1.0f};
-  Color flux() const { return beta * (3.0f / (r.x + r.y + r.z)); }
-};
-
 // Follows one photon; appends what it stores to `out` (surfaces) and `volume` (scattering
 // points in media) and counts its rays in `rays`. `medium`: the one the photon starts in.
 // Caustic photons store L S+ D at surfaces and L S+ V in media (their first scattering point
@@ -163,7 +154,7 @@ void trace_photon(const Scene& scene, Ray ray, Color flux, int32_t medium, bool 
   const int max_depth = s.max_depth;
   const bool media = scene.has_media();
   const int hero = media ? std::min(int(rng.next_float() * 3.0f), 2) : 0;
-  PhotonState st{flux};
+  Color beta = flux, r(1.0f);  // the throughput is hero_throughput(beta, r)
   int specular_bounces = 0;
   bool specular_path = true;  // every bounce so far on a caustic surface (no diffuse, no medium)
   // (Bounded: a photon crossing boundaries without end stops.)
@@ -175,23 +166,21 @@ void trace_photon(const Scene& scene, Ray ray, Color flux, int32_t medium, bool 
     if (medium >= 0) {
       const Medium& med = *scene.media[size_t(medium)];
       const MediumEvent event = med.sample(ray, found ? hit.t : kInfinity, hero, sampler);
-      st.beta *= event.weight;
-      st.r *= event.pdf;
-      if (is_black(st.beta) || !(st.r[hero] > 0.0f)) return;
+      if (!take_medium_event(event, hero, beta, r)) return;
       if (event.scattered) {
         const Vec3 p = ray.at(event.t), wo = -ray.dir;
         const bool caustic_path = specular_path && specular_bounces > 0;
         if (caustic) {
-          if (caustic_path) volume.push_back({p, st.flux(), wo, Vec3(0.0f), depth, volume_photon_tag(medium, true)});
+          if (caustic_path) volume.push_back({p, hero_throughput(beta, r), wo, Vec3(0.0f), depth, volume_photon_tag(medium, true)});
           return;
         }
         // (Not the photons straight from a light: single scattering is the eye's shadow rays'.)
-        if (depth > 0) volume.push_back({p, st.flux(), wo, Vec3(0.0f), depth, volume_photon_tag(medium, caustic_path)});
+        if (depth > 0) volume.push_back({p, hero_throughput(beta, r), wo, Vec3(0.0f), depth, volume_photon_tag(medium, caustic_path)});
         specular_path = false;
         // Russian roulette by the scattering albedo (the weight's ratio to the hero density).
         const float survive = std::min(1.0f, max_component(event.weight) / event.pdf[hero]);
         if (!(survive > 0.0f) || rng.next_float() >= survive) return;
-        st.beta /= survive;
+        beta /= survive;
         Vec3 wi;
         if (!(med.phase().sample(wo, Vec2(rng.next_float(), rng.next_float()), wi) > 0.0f)) return;
         ray = Ray{p, wi, kInfinity};
@@ -213,7 +202,7 @@ void trace_photon(const Scene& scene, Ray ray, Color flux, int32_t medium, bool 
     if (gather) {
       const Vec3 n_side = wo_l.z >= 0 ? hit.n : -hit.n;
       if (caustic) {
-        if (specular_bounces > 0 && !s.caustic_volume_only) out.push_back({hit.p, st.flux(), wo, n_side, depth});
+        if (specular_bounces > 0 && !s.caustic_volume_only) out.push_back({hit.p, hero_throughput(beta, r), wo, n_side, depth});
         // Past a gather surface the path is not L S+ V (as for global photons, which mark no
         // volume photon after one as a caustic path).
         specular_path = false;
@@ -222,15 +211,15 @@ void trace_photon(const Scene& scene, Ray ray, Color flux, int32_t medium, bool 
         BsdfSample coat;
         if (!delta_continuation(m, wo_l, hit.sp, [&] { return rng.next_float(); }, coat)) return;
         const Vec3 wi = hit.frame.to_world(coat.wi);
-        st.beta *= coat.weight;
+        beta *= coat.weight;
         ++specular_bounces;
-        if (hit.leaks(wi) || is_black(st.beta)) return;
+        if (hit.leaks(wi) || is_black(beta)) return;
         if (hit.media) medium = hit.media->entered(wi, hit.n);
         ray = spawn_ray(hit.p, hit.n, wi);
         ++depth;
         continue;
       }
-      out.push_back({hit.p, st.flux(), wo, n_side, depth});
+      out.push_back({hit.p, hero_throughput(beta, r), wo, n_side, depth});
     }
     // A soft surface (rough glossy, not a gather surface) ends a caustic photon: the light it
     // passes on to a gather point is the final gather's.
@@ -245,13 +234,13 @@ void trace_photon(const Scene& scene, Ray ray, Color flux, int32_t medium, bool 
       // surface its albedo, as in Jensen 2001, sec. 5.3): the flux keeps its magnitude.
       const float survive = std::min(1.0f, max_component(bs.weight));
       if (survive <= 0 || rng.next_float() >= survive) return;
-      st.beta *= bs.weight / survive;
+      beta *= bs.weight / survive;
       specular_path = false;
     } else {
-      st.beta *= bs.weight;
+      beta *= bs.weight;
       ++specular_bounces;
       if (!is_caustic_surface(m, s.caustic_threshold)) specular_path = false;
-      if (is_black(st.beta)) return;
+      if (is_black(beta)) return;
     }
     if (hit.media) medium = hit.media->entered(wi, hit.n);
     ray = spawn_ray(hit.p, hit.n, wi);

@@ -37,14 +37,13 @@ Color trace_path(const Ray& camera_ray, const Scene& scene, Sampler& sampler, co
 }
 
 Color trace_volume_path(const Ray& camera_ray, const Scene& scene, Sampler& sampler, const MonteCarloSettings& settings) {
-  // The path's throughput is path.beta / mean(r): beta the product of its factors, r per channel
-  // the product of the densities of its medium events had that channel been sampled (the hero
-  // channel samples them all: spectral MIS over the whole path).
+  // The path's throughput under spectral MIS over the whole path: hero_throughput(beta, r), r
+  // per channel the medium events' densities.
   EyePath path{Color(0.0f), Color(1.0f), BsdfVertex{}, settings.max_depth, settings.hide_emitters};
   Color& L = path.L;
   Color& beta = path.beta;
   Color r(1.0f);
-  auto throughput = [&] { return beta * (3.0f / (r.x + r.y + r.z)); };
+  auto throughput = [&] { return hero_throughput(beta, r); };
   const int hero = std::min(int(sampler.next1d() * 3.0f), 2);
   int32_t medium = scene.camera_medium;
   Ray ray = camera_ray;
@@ -64,9 +63,7 @@ Color trace_volume_path(const Ray& camera_ray, const Scene& scene, Sampler& samp
     const bool found = scene.intersect(ray, hit);
     if (medium >= 0) {
       const MediumEvent event = scene.media[size_t(medium)]->sample(ray, found ? hit.t : kInfinity, hero, sampler);
-      beta *= event.weight;
-      r *= event.pdf;
-      if (is_black(beta) || !(r[hero] > 0.0f)) break;
+      if (!take_medium_event(event, hero, beta, r)) break;
       if (event.scattered) {
         // A medium vertex: direct light by a shadow ray, the path on by the phase function.
         if (depth >= settings.max_depth) break;

@@ -207,3 +207,34 @@ TEST_CASE("media: in a grid medium, ratio tracking's transmittance and delta tra
   for (int i = 0; i < 100000; ++i) tr += c.transmittance(ray, 10.0f, sampler).x;
   CHECK(tr / 100000 == Approx(std::exp(-2.0)).epsilon(0.01));
 }
+
+TEST_CASE("media: a path's hero throughput stays finite and exact over hundreds of thin-medium events",
+          "[core][media]") {
+  // Scattering events in a thin grey fog (sigma_t 0.003, albedo 0.9, 100 units apart): each
+  // event's weight sigma_s Tr and density sigma_t Tr are ~1e-3, their products underflow a
+  // float within 15 events; the throughput, albedo^n, must not.
+  const float sigma_t = 0.003f, albedo = 0.9f;
+  MediumEvent e;
+  e.scattered = true;
+  const float tr = std::exp(-sigma_t * 100.0f);
+  e.weight = Color(albedo * sigma_t * tr);
+  e.pdf = Color(sigma_t * tr);
+  Color beta(1.0f), r(1.0f);
+  for (int n = 1; n <= 300; ++n) {
+    REQUIRE(take_medium_event(e, n % 3, beta, r));
+    const Color t = hero_throughput(beta, r);
+    INFO("event " << n);
+    REQUIRE(t.x == Approx(std::pow(double(albedo), n)).epsilon(1e-3));
+  }
+  // A chromatic event: the hero channel's density alone scales, the mean of r weighs them.
+  Color b2(1.0f), r2(1.0f);
+  MediumEvent c;
+  c.weight = Color(0.2f, 0.4f, 0.8f);
+  c.pdf = Color(0.5f, 1.0f, 2.0f);
+  REQUIRE(take_medium_event(c, 1, b2, r2));
+  const Color t = hero_throughput(b2, r2);
+  for (int ch = 0; ch < 3; ++ch) CHECK(t[ch] == Approx(c.weight[ch] * 3.0 / 3.5));
+  // No density in the hero channel ends the path.
+  c.pdf = Color(0.5f, 0.0f, 2.0f);
+  CHECK_FALSE(take_medium_event(c, 1, b2, r2));
+}

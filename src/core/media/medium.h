@@ -26,6 +26,23 @@ struct MediumEvent {
   Color pdf{1.0f};
 };
 
+// A path's throughput through media under spectral MIS (hero-channel sampling) is beta / mean(r):
+// beta the product of its factors, r per channel the product of its medium events' densities
+// had that channel been the one sampled (the hero channel samples them all).
+inline Color hero_throughput(const Color& beta, const Color& r) { return beta * (3.0f / (r.x + r.y + r.z)); }
+// Takes a medium event into beta and r, both kept divided by r[hero]: their products would
+// otherwise underflow within a few dozen events in a thin medium (r to 0 first, an infinite
+// throughput). False when the path ends there (no weight, or no density in the hero channel).
+inline bool take_medium_event(const MediumEvent& event, int hero, Color& beta, Color& r) {
+  beta *= event.weight;
+  r *= event.pdf;
+  const float k = r[hero];
+  if (!(k > 0.0f)) return false;
+  beta /= k;
+  r /= k;
+  return !is_black(beta);
+}
+
 class Medium {
  public:
   virtual ~Medium() = default;
