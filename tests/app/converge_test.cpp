@@ -51,7 +51,9 @@ TEST_CASE("converge: a short run writes the CSV, images, error maps and the repo
   std::getline(csv, line);
   CHECK(line == "integrator,seconds,passes,rmse,relmse");
   int path_rows = 0, photon_rows = 0;
-  double last_path_relmse = 1e30;
+  double last_path_relmse = 1e30, last_seconds = 0;
+  std::string last_name;
+  long last_passes = 0;
   while (std::getline(csv, line)) {
     std::istringstream fields(line);
     std::string name, seconds, passes, rmse, relmse;
@@ -61,11 +63,18 @@ TEST_CASE("converge: a short run writes the CSV, images, error maps and the repo
     std::getline(fields, rmse, ',');
     std::getline(fields, relmse, ',');
     CHECK(std::stod(seconds) > 0);
-    // (A round that starts within the budget ends past it; under the sanitizers beside another
-    // test one ended at 2.79 s of 1.5.)
-    CHECK(std::stod(seconds) < 1.5 * 2.0);
     CHECK(std::stol(passes) >= 1);
     CHECK(std::stod(rmse) > 0);
+    // No bound on the seconds themselves (a shared machine stalls a run past any bound; the
+    // sanitizer run once took 3.2 s for this 1.5 s budget): each integrator's rows follow its
+    // clock and its passes, one row per checkpoint passed and one at the end.
+    if (name == last_name) {
+      CHECK(std::stod(seconds) > last_seconds);
+      CHECK(std::stol(passes) > last_passes);
+    }
+    last_name = name;
+    last_seconds = std::stod(seconds);
+    last_passes = std::stol(passes);
     if (name == "path") {
       ++path_rows;
       CHECK(std::stod(relmse) <= last_path_relmse * 1.05);  // the error falls as passes add up
@@ -74,7 +83,9 @@ TEST_CASE("converge: a short run writes the CSV, images, error maps and the repo
     photon_rows += name == "photon";
   }
   CHECK(path_rows >= 2);
+  CHECK(path_rows <= 3);
   CHECK(photon_rows >= 1);
+  CHECK(photon_rows <= 3);
 }
 
 TEST_CASE("converge: the CSV has a floor-free column when the reference is several renders", "[app][converge]") {
