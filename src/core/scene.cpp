@@ -77,8 +77,14 @@ Color Scene::transmittance(const Ray& ray_in, int32_t medium, Sampler& sampler) 
     const bool found = intersect(ray, hit);
     if (medium >= 0) tr *= media[size_t(medium)]->transmittance(ray, found ? hit.t : ray.tmax, sampler);
     if (!found) return tr;
-    if (!is_medium_boundary(hit) || is_black(tr)) return Color(0.0f);
-    medium = hit.media->entered(ray.dir, hit.n);
+    // (A null lobe, thindielectric's, lets the ray through with its weight, as in Mitsuba's
+    // volpath; its surface may or may not bound a medium.)
+    if (!is_medium_boundary(hit)) {
+      if (!hit.material->has(kBsdfNull)) return Color(0.0f);
+      tr *= hit.material->null_transmission(hit.frame.to_local(-ray.dir), hit.sp);
+    }
+    if (is_black(tr)) return Color(0.0f);
+    if (hit.media) medium = hit.media->entered(ray.dir, hit.n);
     const Vec3 origin = offset_origin(hit.p, hit.n, ray.dir);
     const float step = glm::length(origin - ray.origin);
     ray = Ray{origin, ray.dir, ray.tmax - step};

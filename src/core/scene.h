@@ -81,8 +81,9 @@ class Scene {
   // Shadow rays: any hit before ray.tmax, masked surfaces passed as intersect() passes them.
   bool occluded(const Ray& ray) const;
   // A shadow ray through media: the transmittance over [0, ray.tmax] from `medium` on, through
-  // the surfaces that only bound media (null BSDF); zero at any other surface. Without media,
-  // 0 or 1 as occluded() says.
+  // the surfaces that only bound media (null BSDF) and those with a null lobe (thindielectric,
+  // at its null_transmission); zero at any other surface. Without media, 0 or 1 as occluded()
+  // says (Mitsuba's path stops at a thindielectric, its volpath passes it).
   Color transmittance(const Ray& ray, int32_t medium, Sampler& sampler) const;
   // The medium at point p (-1: none): the near side of the first surface bounding media that a
   // ray from p along dir meets; where none is met, outside_medium(). Light sources use it for

@@ -229,6 +229,15 @@ void trace_photon(const Scene& scene, Ray ray, Color flux, int32_t medium, bool 
     if (!m.sample(wo_l, u, rng.next_float(), bs, hit.sp)) return;
     const Vec3 wi = hit.frame.to_world(bs.wi);
     if (hit.leaks(wi)) return;
+    if (media && bs.null()) {
+      // In media a null lobe (straight through a thindielectric) is no bounce, as for the eye
+      // (EyePath::transparent_nulls): the light straight through it is the shadow rays'.
+      beta *= bs.weight;
+      if (++crossings > 256 || is_black(beta)) return;
+      if (hit.media) medium = hit.media->entered(wi, hit.n);
+      ray = spawn_ray(hit.p, hit.n, wi);
+      continue;
+    }
     if (gather) {
       // Russian roulette with the sampled reflectance as survival probability (for a diffuse
       // surface its albedo, as in Jensen 2001, sec. 5.3): the flux keeps its magnitude.

@@ -12,6 +12,11 @@ struct EyePath {
   BsdfVertex from;  // the camera counts emission fully, as a delta bounce does
   int max_depth = 16;
   bool hide_emitters = false;  // Mitsuba's: what the camera sees directly of lights renders black
+  // In scenes with media (Mitsuba's volpath) a null lobe (kBsdfNull: straight through a
+  // thindielectric) is no vertex: shadow rays pass it (Scene::transmittance), so `from` stays
+  // the vertex before it, and max_depth does not count it. crossed_null: the last scatter did so.
+  bool transparent_nulls = false;
+  bool crossed_null = false;
 
   // Intersects `ray` (the segment reaching eye vertex `depth`, 0 for the camera ray) and adds
   // the emission it finds, MIS-weighted against the previous vertex's shadow ray. False when the
@@ -36,7 +41,8 @@ struct EyePath {
     const Vec3 wi = hit.frame.to_world(bs.wi);
     if (hit.leaks(wi)) return false;
     beta *= bs.weight;
-    from = BsdfVertex{bs.delta, bs.pdf, hit.p, hit.frame.n};
+    crossed_null = transparent_nulls && bs.null();
+    if (!crossed_null) from = BsdfVertex{bs.delta, bs.pdf, hit.p, hit.frame.n};
     ray = spawn_ray(hit.p, hit.n, wi);
     return true;
   }

@@ -39,7 +39,7 @@ Color trace_path(const Ray& camera_ray, const Scene& scene, Sampler& sampler, co
 Color trace_volume_path(const Ray& camera_ray, const Scene& scene, Sampler& sampler, const MonteCarloSettings& settings) {
   // The path's throughput under spectral MIS over the whole path: hero_throughput(beta, r), r
   // per channel the medium events' densities.
-  EyePath path{Color(0.0f), Color(1.0f), BsdfVertex{}, settings.max_depth, settings.hide_emitters};
+  EyePath path{Color(0.0f), Color(1.0f), BsdfVertex{}, settings.max_depth, settings.hide_emitters, true};
   Color& L = path.L;
   Color& beta = path.beta;
   Color r(1.0f);
@@ -95,9 +95,8 @@ Color trace_volume_path(const Ray& camera_ray, const Scene& scene, Sampler& samp
     if (!hit.material->is_specular()) L += throughput() * estimate_direct(scene, hit, wo, sampler, 1.0f, medium);
     if (!path.scatter(hit, wo, sampler, ray)) break;
     if (hit.media) medium = hit.media->entered(ray.dir, hit.n);
-    // A delta transmission that keeps the direction (thindielectric's) is not a bounce, as
-    // Mitsuba's volpath counts it (its lobe is a null one there).
-    if (path.from.specular && glm::dot(ray.dir, -wo) > 1.0f - 1e-6f) continue;
+    // A null lobe (straight through a thindielectric) is not a vertex, as Mitsuba's volpath counts.
+    if (path.crossed_null) continue;
     ++depth;
     if (!survives()) break;
   }

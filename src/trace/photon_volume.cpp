@@ -43,7 +43,7 @@ Color PhotonIntegrator::beam_estimate(const Ray& ray, float tmax, const Scene& s
 
 Color PhotonIntegrator::trace_media_eye(const Ray& camera_ray, const Scene& scene, Sampler& sampler) const {
   std::vector<Neighbour>& scratch = tls_media_scratch;
-  EyePath path{Color(0.0f), Color(1.0f), BsdfVertex{}, settings_.max_depth, settings_.hide_emitters};
+  EyePath path{Color(0.0f), Color(1.0f), BsdfVertex{}, settings_.max_depth, settings_.hide_emitters, true};
   Color& L = path.L;
   Color& beta = path.beta;
   int32_t medium = scene.camera_medium;
@@ -127,6 +127,7 @@ Color PhotonIntegrator::trace_media_eye(const Ray& camera_ray, const Scene& scen
       if (hit.leaks(wi)) break;
       beta *= coat.weight;
       path.from = BsdfVertex{};
+      path.crossed_null = false;
       ray = spawn_ray(hit.p, hit.n, wi);
     } else {
       // Specular and smooth glossy surfaces: traced, a shadow ray at a glossy one (MIS against
@@ -135,6 +136,7 @@ Color PhotonIntegrator::trace_media_eye(const Ray& camera_ray, const Scene& scen
       if (!path.scatter(hit, wo, sampler, ray)) break;
     }
     if (hit.media) medium = hit.media->entered(ray.dir, hit.n);
+    if (path.crossed_null) continue;  // (not a vertex, as for `path`)
     ++depth;
     if (is_black(beta)) break;
   }

@@ -17,6 +17,10 @@ enum BsdfFlags : uint32_t {
   kBsdfDiffuse = 1u << 2,
   kBsdfGlossy = 1u << 3,
   kBsdfSpecular = 1u << 4,  // a delta lobe: eval and pdf are zero, only sample reaches it
+  // A delta transmission that keeps the direction (thindielectric's): Mitsuba's null lobe. In
+  // scenes with media, as Mitsuba's volpath: no vertex where max_depth counts them, and shadow
+  // rays pass it with its weight (null_transmission).
+  kBsdfNull = 1u << 5,
 };
 
 // What a BSDF may vary with over a surface: where its textures are looked up (the texture
@@ -39,6 +43,7 @@ struct BsdfSample {
   float pdf = 0;  // solid-angle density; 0 for a delta lobe
   bool delta = false;
   uint32_t lobe = 0;  // the flags of the lobe that was sampled
+  bool null() const { return (lobe & kBsdfNull) != 0; }
 };
 
 class Bsdf {
@@ -62,6 +67,9 @@ class Bsdf {
   // refraction), or for a purely glossy BSDF its smooth limit. Lets an integrator follow both
   // branches instead of choosing one at random (and Whitted treat glossy as specular).
   virtual int specular_lobes(const Vec3& /*wo*/, BsdfSample* /*out*/, const ShadingPoint& = {}) const { return 0; }
+  // What a null lobe (kBsdfNull) lets through seen from wo: in scenes with media, shadow rays
+  // pass such a surface with this weight (Mitsuba's eval_null_transmission); 0 without one.
+  virtual Color null_transmission(const Vec3& /*wo*/, const ShadingPoint& = {}) const { return Color(0.0f); }
   // The probability that a ray stops at the surface (Mitsuba's `mask`); 1 for opaque ones.
   virtual float opacity(const ShadingPoint& = {}) const { return 1.0f; }
   virtual bool has_mask() const { return false; }

@@ -51,10 +51,14 @@ int ThinDielectric::specular_lobes(const Vec3& wo, BsdfSample* out, const Shadin
   if (wo.z == 0.0f) return 0;
   const float r = reflectance(std::abs(wo.z));
   out[0] = delta_sample(reflect_local(wo), r, kBsdfReflection);
-  out[1] = delta_sample(-wo, 1.0f - r, kBsdfTransmission);
+  out[1] = delta_sample(-wo, 1.0f - r, kBsdfTransmission | kBsdfNull);
   out[0].weight *= tint_.reflect.at(sp);
   out[1].weight *= tint_.transmit.at(sp);
   return 2;
+}
+
+Color ThinDielectric::null_transmission(const Vec3& wo, const ShadingPoint& sp) const {
+  return (1.0f - reflectance(std::abs(wo.z))) * tint_.transmit.at(sp);
 }
 
 bool RoughDielectric::half_vector(const Vec3& wo, const Vec3& wi, Vec3& wm, float& etap) const {

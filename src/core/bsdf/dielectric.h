@@ -45,8 +45,9 @@ class ThinDielectric final : public SpecularBsdf {
   static std::unique_ptr<Bsdf> create(const Params& p);
   explicit ThinDielectric(float eta, const DielectricTint& tint = {}) : eta_(eta), tint_(tint) {}
   int specular_lobes(const Vec3& wo, BsdfSample* out, const ShadingPoint& sp = {}) const override;
-  uint32_t flags() const override { return kBsdfSpecular | kBsdfReflection | kBsdfTransmission; }
+  uint32_t flags() const override { return kBsdfSpecular | kBsdfReflection | kBsdfTransmission | kBsdfNull; }
   Color albedo(const ShadingPoint& sp = {}) const override { return tint_.albedo(sp); }
+  Color null_transmission(const Vec3& wo, const ShadingPoint& sp = {}) const override;
   // Reflectance of the pane with all internal reflections: R + T^2 R / (1 - R^2) = 2R / (1 + R).
   float reflectance(float cos_i) const;
 
