@@ -85,9 +85,7 @@ Color Scene::transmittance(const Ray& ray_in, int32_t medium, Sampler& sampler) 
     }
     if (is_black(tr)) return Color(0.0f);
     if (hit.media) medium = hit.media->entered(ray.dir, hit.n);
-    const Vec3 origin = offset_origin(hit.p, hit.n, ray.dir);
-    const float step = glm::length(origin - ray.origin);
-    ray = Ray{origin, ray.dir, ray.tmax - step};
+    ray = continued(ray, hit);
     if (!(ray.tmax > 0.0f)) return tr;
   }
   return Color(0.0f);

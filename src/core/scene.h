@@ -94,6 +94,11 @@ class Scene {
   int32_t outside_medium() const;
   // A surface that bounds media and is not there for light (null BSDF): rays pass it.
   static bool is_medium_boundary(const SurfaceHit& hit) { return hit.media && hit.material->opacity(hit.sp) <= 0.0f; }
+  // The rest of `ray` past `hit`, on the far side, in the same direction (tmax what remains).
+  static Ray continued(const Ray& ray, const SurfaceHit& hit) {
+    const Vec3 origin = offset_origin(hit.p, hit.n, ray.dir);
+    return Ray{origin, ray.dir, ray.tmax - glm::length(origin - ray.origin)};
+  }
   // Chooses a light for a shadow ray from p (shading normal n), by render.light_sampler;
   // null where none can reach p.
   const Light* sample_light(const Vec3& p, const Vec3& n, float u, float& pmf) const {

@@ -35,6 +35,12 @@ class PhotonMap {
 
   const std::vector<Photon>& photons() const { return photons_; }
   const Photon& operator[](uint32_t i) const { return photons_[i]; }
+  // Multiplies photon i's stored power by w (its position, and so the index, unchanged).
+  void scale_power(uint32_t i, float w) {
+    Photon& p = photons_[i];
+    const Color c = p.power() * w;
+    for (int k = 0; k < 3; ++k) p.flux[k] = glm::packHalf1x16(c[k]);
+  }
   size_t size() const { return photons_.size(); }
   bool empty() const { return photons_.empty(); }
   // Bytes of photon records plus kd-tree index (nodes and index array).

@@ -33,6 +33,9 @@ struct PhotonPassResult {
   // where they first scattered after specular surfaces alone (L S+ V).
   std::vector<Photon> volume, volume_caustic;
   float volume_scale = 1, volume_caustic_scale = 1;
+  // In media: the share of the global volume photons' flux on L S+ V paths, which decides how
+  // far the caustic pass may go (caustic_cap in photon_tracer.cpp).
+  double volume_caustic_share = 0;
   double seconds = 0;
   uint64_t rays = 0;  // rays traced, both maps (kept photons or not): the pass's cost in rays
   std::vector<std::string> warnings;

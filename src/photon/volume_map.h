@@ -27,16 +27,16 @@ class VolumePhotonMap {
   // for the searches along rays.
   void build(std::vector<Photon> photons, float flux_scale);
   const PhotonMap& photons() const { return map_; }
+  void scale_power(uint32_t i, float w) { map_.scale_power(i, w); }
   size_t size() const { return map_.size(); }
   bool empty() const { return map_.empty(); }
   // The median distance to the k-th nearest other photon over up to `samples` photons spread
   // through the map (deterministic); 0 when the map is empty.
   float median_knn_radius(size_t k, size_t samples = 512) const;
-  // Calls f(index, t, d2) for every photon within `radius` of the segment [0, tmax] of ray
-  // (unit direction): t its projection on the ray (in [0, tmax]), d2 its squared distance from
-  // the ray.
+  // Calls f(index, t, d2) for every photon within `radius` of the line of ray (unit direction)
+  // whose projection t on it lies in [tmin, tmax]; d2 its squared distance from the line.
   template <class F>
-  void along(const Ray& ray, float tmax, float radius, F&& f) const;
+  void along(const Ray& ray, float tmin, float tmax, float radius, F&& f) const;
   // Bytes of records, kd-tree and hierarchy.
   size_t memory_bytes() const { return map_.memory_bytes() + nodes_.capacity() * sizeof(Node); }
   static constexpr uint32_t kLeafSize = 8;
@@ -55,7 +55,7 @@ class VolumePhotonMap {
 };
 
 template <class F>
-void VolumePhotonMap::along(const Ray& ray, float tmax, float radius, F&& f) const {
+void VolumePhotonMap::along(const Ray& ray, float tmin, float tmax, float radius, F&& f) const {
   if (nodes_.empty()) return;
   const Vec3 inv(1.0f / ray.dir.x, 1.0f / ray.dir.y, 1.0f / ray.dir.z);
   const float r2 = radius * radius;
@@ -65,7 +65,7 @@ void VolumePhotonMap::along(const Ray& ray, float tmax, float radius, F&& f) con
   while (top > 0) {
     const Node& node = nodes_[stack[--top]];
     // The segment against the node's box grown by the radius (slabs).
-    float t0 = 0.0f, t1 = tmax;
+    float t0 = tmin, t1 = tmax;
     bool miss = false;
     for (int a = 0; a < 3 && !miss; ++a) {
       const float lo = node.lo[a] - radius, hi = node.hi[a] + radius;
@@ -88,7 +88,7 @@ void VolumePhotonMap::along(const Ray& ray, float tmax, float radius, F&& f) con
     for (uint32_t i = node.first; i < node.first + node.count; ++i) {
       const Vec3 d = map_[i].position - ray.origin;
       const float t = glm::dot(d, ray.dir);
-      if (t < 0.0f || t > tmax) continue;
+      if (t < tmin || t > tmax) continue;
       const Vec3 off = d - t * ray.dir;  // (not |d|^2 - t^2: that cancels far from the origin)
       const float d2 = glm::dot(off, off);
       if (d2 < r2) f(i, t, d2);

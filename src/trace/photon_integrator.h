@@ -64,6 +64,9 @@ struct PhotonSettings : MonteCarloSettings {
   // holding volume_k of them (VolumePhotonMap::median_knn_radius), shrinking as the surfaces'.
   int volume_k = 30;
   float volume_radius = 0;
+  // Each volume photon's kernel normalised over the part of its ball in its medium
+  // (correct_volume_boundaries), so that walls and a medium's bounds do not darken it.
+  bool volume_boundary = true;
 
   // Reads the integrator block (its keys were checked against the registry row).
   static PhotonSettings read(const Params& p, const RenderSettings& render, bool final_gather);
@@ -133,6 +136,7 @@ struct PhotonStats {
   uint64_t global_emitted = 0, caustic_emitted = 0;
   size_t global_bytes = 0, caustic_bytes = 0, irradiance_bytes = 0;
   size_t volume_photons = 0, volume_caustic_photons = 0;  // the last pass's
+  double volume_caustic_share = 0;  // the last pass's (PhotonPassResult)
   size_t volume_bytes = 0;  // both volume maps'
 };
 
@@ -262,10 +266,13 @@ class PhotonIntegrator final : public Integrator {
   bool media_ = false;
   Color trace_media_eye(const Ray& ray, const Scene& scene, Sampler& sampler) const;
   // The in-scattered radiance towards -ray.dir along [0, tmax] of ray in `medium` from eye
-  // vertex `depth`: volume photons of one bounce or more, each weighted by `weight(t)` (the
-  // transmittance to it).
+  // vertex `depth`: volume photons of one bounce or more projecting onto it, each weighted by
+  // `weight(t)` (the transmittance to it); `segment_end` (>= tmax) ends the medium's segment,
+  // where a photon's kernel is cut off. `open_start`: the ray starts inside the medium (at the
+  // camera), not at a surface, and the photons just behind it whose balls reach it count too.
   template <class W>
-  Color beam_estimate(const Ray& ray, float tmax, const Scene& scene, int32_t medium, int depth, W&& weight) const;
+  Color beam_estimate(const Ray& ray, float tmax, float segment_end, bool open_start, const Scene& scene,
+                      int32_t medium, int depth, W&& weight) const;
   VolumePhotonMap volume_, volume_caustic_;
   float volume_r1_ = 0, volume_caustic_r1_ = 0, volume_radius2_scale_ = 1;
   bool volume_radii_set_ = false;

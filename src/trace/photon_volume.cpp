@@ -14,27 +14,32 @@ thread_local std::vector<Neighbour> tls_media_scratch;
 }  // namespace
 
 template <class W>
-Color PhotonIntegrator::beam_estimate(const Ray& ray, float tmax, const Scene& scene, int32_t medium, int depth,
-                                      W&& weight) const {
+Color PhotonIntegrator::beam_estimate(const Ray& ray, float tmax, float segment_end, bool open_start,
+                                      const Scene& scene, int32_t medium, int depth, W&& weight) const {
   const int max_bounces = settings_.max_depth - 1 - depth;
   if (max_bounces < 1) return Color(0.0f);
   const Vec3 wo = -ray.dir;
   const PhaseFunction& phase = scene.media[size_t(medium)]->phase();
   Color sum(0.0f);
-  // Each photon's flux spread over the disc of its radius across the ray (a cylinder kernel):
-  // L = sum p(wo, wi_p) Phi_p Tr(t_p) / (pi r^2).
+  // Each photon's flux spread over the ball of its radius (a constant kernel, normalised over
+  // the part of the ball in its medium: correct_volume_boundaries), taken along the ray within
+  // the segment: L = sum p(wo, wi_p) Phi_p Tr(t_p) |chord_p cut to [0, segment_end]| / (4/3 pi r^3).
   auto gather = [&](const VolumePhotonMap& map, float radius, bool skip_caustic_paths) {
     if (map.empty() || !(radius > 0.0f)) return;
     Color part(0.0f);
-    map.along(ray, tmax, radius, [&](uint32_t i, float t, float) {
+    const float r2 = radius * radius;
+    map.along(ray, open_start ? -radius : 0.0f, tmax, radius, [&](uint32_t i, float t, float d2) {
       const Photon& p = map.photons()[i];
       // (Only this medium's photons: a neighbouring medium's, or one behind a wall, lie within
       // the radius too.)
       if (p.bounces < 1 || p.bounces > max_bounces || photon_medium(p) != medium) return;
       if (skip_caustic_paths && is_caustic_path(p)) return;
-      part += phase.eval(wo, p.incoming_dir()) * p.power() * weight(t);
+      const float half = std::sqrt(std::max(0.0f, r2 - d2));
+      const float chord = std::min(t + half, segment_end) - std::max(t - half, 0.0f);
+      if (!(chord > 0.0f)) return;
+      part += phase.eval(wo, p.incoming_dir()) * p.power() * (weight(std::max(t, 0.0f)) * chord);
     });
-    sum += part * map.photons().flux_scale() / (kPi * radius * radius);
+    sum += part * map.photons().flux_scale() / (4.0f / 3.0f * kPi * r2 * radius);
   };
   gather(volume_, volume_radius(), !volume_caustic_.empty() && volume_caustic_radius() > 0.0f);
   gather(volume_caustic_, volume_caustic_radius(), false);
@@ -63,7 +68,7 @@ Color PhotonIntegrator::trace_media_eye(const Ray& camera_ray, const Scene& scen
         // Transmittance in closed form: the photons weighted by it, the segment's end reached
         // with it, single scattering from a point sampled equiangularly towards a light's.
         if (!is_black(sigma_s)) {
-          L += beta * beam_estimate(ray, s, scene, medium, depth, [&](float t) { return beer_lambert(sigma_t, t); });
+          L += beta * beam_estimate(ray, s, s, segment == 0, scene, medium, depth, [&](float t) { return beer_lambert(sigma_t, t); });
           if (depth < settings_.max_depth) L += beta * single_scattering(scene, ray, s, medium, sigma_t, sigma_s, sampler);
         }
         beta *= beer_lambert(sigma_t, s);  // (0 past an infinite segment where sigma_t > 0)
@@ -75,7 +80,7 @@ Color PhotonIntegrator::trace_media_eye(const Ray& camera_ray, const Scene& scen
         const int hero = std::min(int(sampler.next1d() * 3.0f), 2);
         const MediumEvent event = med.sample(ray, s, hero, sampler);
         const float end = event.scattered ? event.t : s;
-        L += beta * beam_estimate(ray, end, scene, medium, depth, [](float) { return 1.0f; });
+        L += beta * beam_estimate(ray, end, s, segment == 0, scene, medium, depth, [](float) { return 1.0f; });
         if (!(event.pdf[hero] > 0.0f)) break;
         if (event.scattered) {
           if (depth < settings_.max_depth)

@@ -31,7 +31,7 @@ TEST_CASE("volume map: the photons along a ray are those a brute-force scan find
     const float tmax = trial % 5 == 0 ? kInfinity : 3.0f * rng.next_float();
     const float radius = 0.01f + 0.2f * rng.next_float();
     std::map<uint32_t, std::pair<float, float>> found;
-    map.along(ray, tmax, radius, [&](uint32_t i, float t, float d2) { found[i] = {t, d2}; });
+    map.along(ray, 0.0f, tmax, radius, [&](uint32_t i, float t, float d2) { found[i] = {t, d2}; });
     size_t expected = 0;
     for (uint32_t i = 0; i < map.size(); ++i) {
       const Vec3 v = map.photons()[i].position - o;

@@ -152,3 +152,45 @@ TEST_CASE("scene: the medium at a point, inside and outside a boundary, and the 
   CHECK(open.scene->outside_medium() == open.scene->camera_medium);
   CHECK(open.scene->medium_at(Vec3(0.0f, 0.0f, -3.0f), Vec3(0.0f, 0.0f, -1.0f)) == open.scene->camera_medium);
 }
+
+namespace {
+// A ball of fog (null shell, radius 1, centre at height 1) on a grey floor, lit from a 0.8 x 0.8
+// quad light facing down, its corner at (light_x, light_y, -0.4).
+std::string fog_ball(double light_x, double light_y) {
+  return R"({"camera": {"position": [0, 1.2, -4], "look_at": [0, 0.9, 0], "up": [0, 1, 0], "fov": 40},
+    "render": {"max_depth": 12},
+    "media": {"fog": {"type": "homogeneous", "sigma_t": 3, "albedo": 0.95}},
+    "materials": {"grey": {"type": "diffuse", "albedo": 0.5}, "boundary": {"type": "null"},
+                  "light": {"type": "diffuse", "albedo": 0, "emission": [6, 6, 6]}},
+    "objects": [{"type": "quad", "origin": [-4, 0, -4], "edge1": [0, 0, 8], "edge2": [8, 0, 0], "material": "grey"},
+                {"type": "sphere", "center": [0, 1, 0], "radius": 1, "material": "boundary", "interior": "fog"},
+                {"type": "quad", "origin": [)" + std::to_string(light_x) + ", " + std::to_string(light_y) + R"(, -0.4], "edge1": [0.8, 0, 0],
+                 "edge2": [0, 0, 0.8], "material": "light"}]})";
+}
+}  // namespace
+
+TEST_CASE("photon through media: a bounded fog ball at the default radii, and a light across its shell, as path renders them",
+          "[trace][media][photon]") {
+  // An estimate beside the shell finds no photons beyond it: at a first radius a third of the
+  // ball's, without the boundary correction the ball renders an eighth darker.
+  const std::string above = fog_ball(-0.4, 2.5);
+  const auto path = render_text(above, "path", "{}", 512, 32, 32);
+  const auto photon = render_text(above, "photon", R"({"photons": 20000})", 16, 32, 32);
+  const auto wide = render_text(above, "photon", R"({"photons": 20000, "volume_radius": 0.3})", 16, 32, 32);
+  const auto uncorrected =
+      render_text(above, "photon", R"({"photons": 20000, "volume_radius": 0.3, "volume_boundary": false})", 16, 32, 32);
+  // The ball's part of the image (rows 4..28, columns 8..24 of 32).
+  const glm::dvec3 p = region_mean(path.image, 8, 4, 24, 28), q = region_mean(photon.image, 8, 4, 24, 28),
+                   w = region_mean(wide.image, 8, 4, 24, 28), u = region_mean(uncorrected.image, 8, 4, 24, 28);
+  CHECK(p.x > 0.02);
+  CHECK(q.x == Approx(p.x).epsilon(0.03));
+  CHECK(w.x == Approx(p.x).epsilon(0.06));
+  CHECK(u.x < 0.92 * p.x);
+  // A light across the shell, its centre inside, two thirds of it outside: its photons start in
+  // the medium where they leave it.
+  const std::string across = fog_ball(0.0, 1.9);
+  const auto path2 = render_text(across, "path", "{}", 512, 32, 32);
+  const auto photon2 = render_text(across, "photon", R"({"photons": 20000})", 16, 32, 32);
+  const Color a = photon2.image.mean(), b = path2.image.mean();
+  CHECK(a.x == Approx(b.x).epsilon(0.04));
+}
