@@ -36,8 +36,7 @@ bool visible_from_camera(const Scene& scene, const Photon& ph, bool volume) {
     SurfaceHit hit;
     if (!scene.intersect(ray, hit)) return true;
     if (!Scene::is_medium_boundary(hit)) return false;
-    const Vec3 origin = offset_origin(hit.p, hit.n, ray.dir);
-    ray = Ray{origin, ray.dir, ray.tmax - glm::length(origin - ray.origin)};
+    ray = Scene::continued(ray, hit);
     if (!(ray.tmax > 0.0f)) return true;
   }
   return false;

@@ -79,10 +79,8 @@ Color Scene::transmittance(const Ray& ray_in, int32_t medium, Sampler& sampler) 
     if (!found) return tr;
     // (A null lobe, thindielectric's, lets the ray through with its weight, as in Mitsuba's
     // volpath; its surface may or may not bound a medium.)
-    if (!is_medium_boundary(hit)) {
-      if (!hit.material->has(kBsdfNull)) return Color(0.0f);
-      tr *= hit.material->null_transmission(hit.frame.to_local(-ray.dir), hit.sp);
-    }
+    if (!passes_straight(hit)) return Color(0.0f);
+    if (!is_medium_boundary(hit)) tr *= hit.material->null_transmission(hit.frame.to_local(-ray.dir), hit.sp);
     if (is_black(tr)) return Color(0.0f);
     if (hit.media) medium = hit.media->entered(ray.dir, hit.n);
     ray = continued(ray, hit);

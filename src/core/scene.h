@@ -94,6 +94,11 @@ class Scene {
   int32_t outside_medium() const;
   // A surface that bounds media and is not there for light (null BSDF): rays pass it.
   static bool is_medium_boundary(const SurfaceHit& hit) { return hit.media && hit.material->opacity(hit.sp) <= 0.0f; }
+  // A surface a ray through media goes straight on past: one that only bounds media, or one
+  // with a null lobe (thindielectric's, with its null_transmission).
+  static bool passes_straight(const SurfaceHit& hit) {
+    return is_medium_boundary(hit) || hit.material->has(kBsdfNull);
+  }
   // The rest of `ray` past `hit`, on the far side, in the same direction (tmax what remains).
   static Ray continued(const Ray& ray, const SurfaceHit& hit) {
     const Vec3 origin = offset_origin(hit.p, hit.n, ray.dir);

@@ -209,7 +209,7 @@ void trace_photon(const Scene& scene, Ray ray, Color flux, int32_t medium, bool 
     if (Scene::is_medium_boundary(hit)) {  // not a bounce: the photon goes on in the other medium
       if (++crossings > 256) return;
       medium = hit.media->entered(ray.dir, hit.n);
-      ray = Ray{offset_origin(hit.p, hit.n, ray.dir), ray.dir, kInfinity};
+      ray = Scene::continued(ray, hit);
       continue;
     }
     const Vec3 wo = -ray.dir;
@@ -416,19 +416,21 @@ std::vector<Photon> run_map(const Scene& scene, const PhotonPassSettings& s, boo
 // volumetric-caustic and 58 % on Mitsuba's glass ball in fog), the caustic photons aimed at
 // them found few and took nine tenths of a render. A caustic below the share keeps a map, from
 // fewer photons.
-uint64_t caustic_cap(const PhotonPassSettings& s, PhotonPassResult& global) {
+uint64_t caustic_cap(const PhotonPassSettings& s, const PhotonPassResult& global) {
   if (global.global_emitted == 0) return 0;
-  if (s.caustic_volume_only) {
-    double all = 0, caustic = 0;
-    for (const Photon& p : global.volume) {
-      const double f = max_component(p.power());
-      all += f;
-      if (is_caustic_path(p)) caustic += f;
-    }
-    global.volume_caustic_share = all > 0 ? caustic / all : 0.0;
-    if (!(global.volume_caustic_share >= kMinVolumeCausticShare)) return global.global_emitted;
-  }
+  if (s.caustic_volume_only && !(global.volume_caustic_share >= kMinVolumeCausticShare)) return global.global_emitted;
   return std::max<uint64_t>(kCausticShare * global.global_emitted, uint64_t(1) << 18);
+}
+
+// The share of volume photons' flux on L S+ V paths (0 without any).
+double caustic_path_share(const std::vector<Photon>& volume) {
+  double all = 0, caustic = 0;
+  for (const Photon& p : volume) {
+    const double f = max_component(p.power());
+    all += f;
+    if (is_caustic_path(p)) caustic += f;
+  }
+  return all > 0 ? caustic / all : 0.0;
 }
 
 }  // namespace
@@ -447,6 +449,7 @@ PhotonPassResult trace_photons(const Scene& scene, const PhotonPassSettings& set
   PhotonPassResult r;
   r.global = run_map(scene, settings, false, 0, r.global_emitted, r.rays, r.global_scale, r.volume, r.volume_scale,
                      r.warnings);
+  r.volume_caustic_share = caustic_path_share(r.volume);
   if (!stop_requested(settings))
     r.caustic = run_map(scene, settings, true, caustic_cap(settings, r), r.caustic_emitted, r.rays, r.caustic_scale,
                         r.volume_caustic, r.volume_caustic_scale, r.warnings);

@@ -35,7 +35,7 @@ float medium_ball_fraction(const Scene& scene, const Vec3& p, int32_t medium, fl
       const float a = radius - ray.tmax, b = found ? a + hit.t : radius;
       if (m == medium) inside += double(b) * b * b - double(a) * a * a;
       if (!found) break;
-      if (!Scene::is_medium_boundary(hit) && !hit.material->has(kBsdfNull)) break;
+      if (!Scene::passes_straight(hit)) break;
       if (hit.media) m = hit.media->entered(dir, hit.n);
       ray = Scene::continued(ray, hit);
       if (!(ray.tmax > 0.0f)) break;

@@ -99,7 +99,7 @@ Color PhotonIntegrator::trace_media_eye(const Ray& camera_ray, const Scene& scen
     }
     if (Scene::is_medium_boundary(hit)) {  // not a vertex: the ray goes on in the other medium
       medium = hit.media->entered(ray.dir, hit.n);
-      ray = Ray{offset_origin(hit.p, hit.n, ray.dir), ray.dir, kInfinity};
+      ray = Scene::continued(ray, hit);
       continue;
     }
     if (visible) L += beta * emission_mis(scene, hit, scene.emitted(hit, hit.frame.to_local(-ray.dir)), path.from);
