@@ -4,6 +4,7 @@ set -euo pipefail
 packages=(build-essential cmake pkg-config libglm-dev libnanoflann-dev libopenimageio-dev
           libtbb-dev catch2 nlohmann-json3-dev libcli11-dev libtinyobjloader-dev fonts-dejavu-core
           openimageio-tools libpugixml-dev zlib1g-dev libembree-dev
+          libopenvdb-dev libboost-dev  # OpenVDB grids for heterogeneous media (its headers include Boost's)
           libopenmpi-dev openmpi-bin  # MPI: one image on many machines (docs/cluster.md)
           glmark2-data)  # glmark2-data: the Stanford bunny of scenes/cornell-bunny.json
 packages+=("$@")

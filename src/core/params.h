@@ -42,6 +42,8 @@ class Params {
   virtual Image image(const std::string& key, const std::string& what) const = 0;
   // A rotation (3x3, or the rotation part of a 4x4; identity when absent).
   virtual glm::mat3 rotation(const std::string& key) const = 0;
+  // An affine transform (4x4; identity when absent).
+  virtual glm::mat4 affine(const std::string& key) const = 0;
   // Texture coordinates' transform (identity when absent).
   virtual UvTransform uv_transform(const std::string& key) const = 0;
   // Nested BSDF blocks (kept alive by the scene): one, or with `allow_pair` an array of one or
@@ -52,7 +54,7 @@ class Params {
   // A volume (a medium's coefficient): a number, a colour or a volume block; `fallback` when
   // the key is absent.
   virtual std::unique_ptr<Volume> volume(const std::string& key, const Color& fallback) const = 0;
-  // A voxel grid file named by `key` (required): Mitsuba's binary .vol.
+  // A voxel grid file named by `key` (required): Mitsuba's binary .vol or an OpenVDB .vdb.
   virtual VolumeGrid volume_grid(const std::string& key) const = 0;
   // An error at `key` (empty: the block itself), naming the file and the place in it.
   [[noreturn]] virtual void fail(const std::string& key, const std::string& message) const = 0;

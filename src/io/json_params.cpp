@@ -108,6 +108,28 @@ glm::mat3 JsonParams::rotation(const std::string& key) const {
   return has(key) ? read_rotation(r_, m_[key], at(key)) : glm::mat3(1.0f);
 }
 
+glm::mat4 read_affine(const JsonReader& r, const json& m, const std::string& p) {
+  if (!m.is_array() || (m.size() != 3 && m.size() != 4)) r.fail(p, "expected a 4x4 matrix (an array of 4 rows of 4 numbers)");
+  glm::mat4 out(1.0f);
+  for (size_t row = 0; row < m.size(); ++row) {
+    const json& rw = m[row];
+    if (!rw.is_array() || rw.size() != 4) r.fail(child(p, row), "expected a row of 4 numbers");
+    for (size_t col = 0; col < 4; ++col) out[int(col)][int(row)] = float(r.number(rw[col], child(child(p, row), col)));
+  }
+  if (out[0][3] != 0.0f || out[1][3] != 0.0f || out[2][3] != 0.0f || out[3][3] != 1.0f) {
+    r.fail(p, "the last row must be [0, 0, 0, 1] (projective transforms are not supported)");
+  }
+  // Singular relative to the columns' lengths, so that small (and large) scales are fine.
+  const glm::mat3 l(out);
+  const float scale = glm::length(l[0]) * glm::length(l[1]) * glm::length(l[2]);
+  if (!(std::abs(glm::determinant(l)) > 1e-6f * scale)) r.fail(p, "the transform is singular (it flattens the shape)");
+  return out;
+}
+
+glm::mat4 JsonParams::affine(const std::string& key) const {
+  return has(key) ? read_affine(r_, m_[key], at(key)) : glm::mat4(1.0f);
+}
+
 ColorParam JsonParams::texture(const std::string& key, const Color& fallback) const {
   if (!has(key)) return fallback;
   if (!m_[key].is_object()) return r_.color(m_[key], at(key));
@@ -167,7 +189,7 @@ std::unique_ptr<Volume> JsonParams::volume(const std::string& key, const Color& 
 VolumeGrid JsonParams::volume_grid(const std::string& key) const {
   const std::string path = file(key, "grid volume file");
   try {
-    return read_vol_file(path);
+    return read_grid_file(path, string("grid", ""));
   } catch (const std::exception& e) {
     r_.fail(at(key), e.what());
   }

@@ -27,6 +27,10 @@ struct PluginContext {
   std::map<const Texture*, std::string>* texture_places = nullptr;
 };
 
+// An affine transform as 3 or 4 rows of 4 numbers (the last row, if given, must be 0 0 0 1),
+// not singular.
+glm::mat4 read_affine(const JsonReader& r, const nlohmann::json& m, const std::string& p);
+
 class JsonParams final : public Params {
  public:
   JsonParams(const PluginContext& ctx, const nlohmann::json& m, const std::string& p) : ctx_(ctx), r_(ctx.r), m_(m), p_(p) {}
@@ -43,6 +47,7 @@ class JsonParams final : public Params {
   Vec3 point(const std::string& key) const override;
   Image image(const std::string& key, const std::string& what) const override;
   glm::mat3 rotation(const std::string& key) const override;
+  glm::mat4 affine(const std::string& key) const override;
   ColorParam texture(const std::string& key, const Color& fallback) const override;
   std::string file(const std::string& key, const std::string& what) const override;
   UvTransform uv_transform(const std::string& key) const override;

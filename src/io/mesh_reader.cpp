@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <filesystem>
 #include "core/textures/mesh_attribute.h"
+#include "io/json_params.h"
 
 namespace caustica::scene_loading {
 
@@ -82,23 +83,7 @@ void Loader::add_mesh_triangle(const MeshData& mesh, size_t i, std::vector<Primi
                mesh.attributes.empty() ? nullptr : &mesh.attributes[i]);
 }
 
-glm::mat4 Loader::read_affine(const json& m, const std::string& p) {
-  if (!m.is_array() || (m.size() != 3 && m.size() != 4)) r.fail(p, "expected a 4x4 matrix (an array of 4 rows of 4 numbers)");
-  glm::mat4 out(1.0f);
-  for (size_t row = 0; row < m.size(); ++row) {
-    const json& rw = m[row];
-    if (!rw.is_array() || rw.size() != 4) r.fail(child(p, row), "expected a row of 4 numbers");
-    for (size_t col = 0; col < 4; ++col) out[int(col)][int(row)] = float(r.number(rw[col], child(child(p, row), col)));
-  }
-  if (out[0][3] != 0.0f || out[1][3] != 0.0f || out[2][3] != 0.0f || out[3][3] != 1.0f) {
-    r.fail(p, "the last row must be [0, 0, 0, 1] (projective transforms are not supported)");
-  }
-  // Singular relative to the columns' lengths, so that small (and large) scales are fine.
-  const glm::mat3 l(out);
-  const float scale = glm::length(l[0]) * glm::length(l[1]) * glm::length(l[2]);
-  if (!(std::abs(glm::determinant(l)) > 1e-6f * scale)) r.fail(p, "the transform is singular (it flattens the shape)");
-  return out;
-}
+glm::mat4 Loader::read_affine(const json& m, const std::string& p) { return caustica::read_affine(r, m, p); }
 
 MeshData Loader::read_mesh(const json& j, const std::string& p) {
   MeshData mesh;

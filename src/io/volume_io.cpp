@@ -4,6 +4,7 @@
 #include <fstream>
 #include <sstream>
 #include "core/error.h"
+#include "io/vdb_io.h"
 
 namespace caustica {
 
@@ -75,6 +76,19 @@ VolumeGrid read_vol_file(const std::string& path) {
   ss << in.rdbuf();
   if (in.bad()) throw InputError(path + ": error while reading the grid file");
   return parse_vol(ss.str(), path);
+}
+
+VolumeGrid read_grid_file(const std::string& path, const std::string& grid_name) {
+  char head[4] = {0, 0, 0, 0};
+  {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw InputError(path + ": cannot open the grid file");
+    in.read(head, 4);
+  }
+  // OpenVDB's magic number, 0x56444220 as a little-endian 64-bit integer: " BDV".
+  if (std::memcmp(head, " BDV", 4) == 0) return read_vdb_file(path, grid_name);
+  if (!grid_name.empty()) throw InputError(path + ": \"grid\" names a grid of an OpenVDB file; this is a .vol file");
+  return read_vol_file(path);
 }
 
 std::string format_vol(const VolumeGrid& g) {

@@ -28,24 +28,43 @@ bool HeterogeneousMedium::clip(const Ray& ray, float tmax, float& t0, float& t1)
   return t0 < t1 && majorant_ > 0.0f;
 }
 
-MediumEvent HeterogeneousMedium::sample(const Ray& ray, float tmax, int, Sampler& sampler) const {
+MediumEvent HeterogeneousMedium::sample(const Ray& ray, float tmax, int channel, Sampler& sampler) const {
   MediumEvent e;
   e.t = tmax;
   float t0, t1;
   if (!clip(ray, tmax, t0, t1)) return e;
   // Delta tracking: tentative collisions at the majorant's rate, each real with probability
-  // sigma_t / majorant; a real one scatters with the albedo as weight (absorption ends the
-  // path in expectation). One channel of extinction: every channel's density is the same.
+  // sigma_t / majorant in the hero channel; a real one scatters with the albedo as weight
+  // (absorption ends the path in expectation). With one channel of extinction every channel's
+  // density is the same (pdf 1). With a chromatic one, each channel's density of the same
+  // decisions is the product of its chances of them (1 - sigma_c / majorant at each null
+  // collision, sigma_c / majorant at the real one; the majorant's exponentials are shared and
+  // cancel), and the weight that product times the albedo (spectral MIS over the path).
+  const bool chromatic = sigma_t_->channels() != 1;
+  Color nulls(1.0f);  // per channel, the product of the null collisions' chances
   for (float t = t0;;) {
     t -= std::log1p(-sampler.next1d()) / majorant_;
-    if (!(t < t1)) return e;
+    if (!(t < t1)) {
+      if (chromatic) e.weight = e.pdf = nulls;
+      return e;
+    }
     const Vec3 p = ray.at(t);
-    const float sigma = sigma_t_->eval(p).x * scale_;
-    if (sampler.next1d() * majorant_ < sigma) {
+    const Color sigma = sigma_t_->eval(p) * scale_;
+    if (sampler.next1d() * majorant_ < (chromatic ? sigma[channel] : sigma.x)) {
       e.scattered = true;
       e.t = t;
       e.weight = albedo_->eval(p);
+      if (chromatic) {
+        e.pdf = nulls * sigma / majorant_;
+        e.weight *= e.pdf;
+      }
       return e;
+    }
+    if (chromatic) {
+      nulls *= Color(1.0f) - sigma / majorant_;
+      // Weight and densities may share any factor: rescale before a long walk underflows them.
+      const float m = max_component(nulls);
+      if (m < 1e-20f && m > 0.0f) nulls /= m;
     }
   }
 }
@@ -53,14 +72,15 @@ MediumEvent HeterogeneousMedium::sample(const Ray& ray, float tmax, int, Sampler
 Color HeterogeneousMedium::transmittance(const Ray& ray, float tmax, Sampler& sampler) const {
   float t0, t1;
   if (!clip(ray, tmax, t0, t1)) return Color(1.0f);
-  // Ratio tracking: the product of each tentative collision's chance of being a null one.
-  float tr = 1.0f;
+  // Ratio tracking: per channel, the product of each tentative collision's chance of being a
+  // null one.
+  Color tr(1.0f);
   for (float t = t0;;) {
     t -= std::log1p(-sampler.next1d()) / majorant_;
-    if (!(t < t1)) return Color(tr);
-    tr *= 1.0f - sigma_t_->eval(ray.at(t)).x * scale_ / majorant_;
+    if (!(t < t1)) return tr;
+    tr *= Color(1.0f) - sigma_t_->eval(ray.at(t)) * (scale_ / majorant_);
     // Russian roulette once little is left (unbiased: the survivors carry twice as much).
-    if (tr < 0.05f) {
+    if (max_component(tr) < 0.05f) {
       if (sampler.next1d() < 0.5f) return Color(0.0f);
       tr *= 2.0f;
     }
@@ -71,9 +91,6 @@ std::unique_ptr<Medium> HeterogeneousMedium::create(const Params& p) {
   const double scale = p.number("scale", 1.0);
   if (!(scale >= 0.0)) p.fail("scale", "scale must not be negative");
   std::unique_ptr<Volume> sigma_t = p.volume("sigma_t", Color(1.0f));
-  if (sigma_t->channels() != 1) {
-    p.fail("sigma_t", "a heterogeneous medium's sigma_t is one channel (a density) here; give the colour in albedo");
-  }
   std::unique_ptr<Volume> albedo = p.volume("albedo", Color(0.75f));
   if (albedo->max_value() > 1.0f) p.fail("albedo", "albedo must lie in [0, 1] (above 1 the medium would create light)");
   if (!std::isfinite(sigma_t->max_value() * scale)) p.fail("scale", "sigma_t times scale overflows");

@@ -2,7 +2,8 @@
 // volumes (a grid file, or a constant), times `scale`. Free flights by delta tracking and
 // shadow rays' transmittance by ratio tracking (Novak et al. 2014), both against the grid's
 // largest extinction as majorant, within the grid's box (the medium is empty outside it).
-// sigma_t is one channel (a density); the albedo may be a colour.
+// sigma_t may be chromatic (three channels: tracked in the path's hero channel against the
+// largest channel as majorant, with spectral MIS over the channels).
 #pragma once
 #include "core/media/medium.h"
 #include "core/media/volume.h"

@@ -23,8 +23,8 @@ const std::vector<PhasePlugin>& phase_plugins() {
 
 const std::vector<VolumePlugin>& volume_plugins() {
   static const std::vector<VolumePlugin> table = {
-      {"constvolume", true, ConstVolume::create, {"value"}},
-      {"gridvolume", true, GridVolume::create, {"filename"}},
+      {"constvolume", true, ConstVolume::create, {"value", "to_world"}},
+      {"gridvolume", true, GridVolume::create, {"filename", "grid", "to_world", "box", "voxels", "filter"}},
   };
   return table;
 }
