@@ -13,6 +13,7 @@
 #include "io/mitsuba/translate.h"
 #include "io/mitsuba/xml_tree.h"
 #include "io/scene_loader.h"
+#include "io/volume_io.h"
 #include "support/errors.h"
 #include "support/render_util.h"
 #include "support/temp_dir.h"
@@ -920,11 +921,11 @@ TEST_CASE("mitsuba: an area emitter declared with an id and referred to from sha
 
 TEST_CASE("mitsuba: with ignore_unsupported, unsupported media (the sensor's too) and subsurface are skipped", "[mitsuba]") {
   // Issue 24: a medium inside the sensor, and <subsurface> inside a shape, were errors even then.
-  // (Homogeneous media are read since issue 26; grid media not yet.)
-  const std::string xml = xml_scene(R"(  <sensor type="perspective"><medium type="heterogeneous"/></sensor>
-  <shape type="sphere"><medium type="heterogeneous" name="interior"/><subsurface type="dipole"/></shape>)");
+  // (Homogeneous and heterogeneous media are read since issue 26: a plugin we do not know stands in.)
+  const std::string xml = xml_scene(R"(  <sensor type="perspective"><medium type="rgbfog"/></sensor>
+  <shape type="sphere"><medium type="rgbfog" name="interior"/><subsurface type="dipole"/></shape>)");
   CHECK_THAT(error_of([&] { translate(xml); }),
-             Contains("unsupported medium plugin \"heterogeneous\" (supported: homogeneous)"));
+             Contains("unsupported medium plugin \"rgbfog\" (supported: heterogeneous, homogeneous)"));
   MitsubaOptions lenient;
   lenient.ignore_unsupported = true;
   const TranslatedScene t = read_mitsuba(xml, "scene.xml", ".", lenient);
@@ -932,7 +933,7 @@ TEST_CASE("mitsuba: with ignore_unsupported, unsupported media (the sensor's too
   CHECK_FALSE(t.doc.contains("media"));
   CHECK_FALSE(t.doc["objects"][0].contains("interior"));
   REQUIRE(t.warnings.size() == 3);
-  CHECK_THAT(t.warnings[0], StartsWith("scene.xml:2:31: <medium type=\"heterogeneous\">: unsupported medium plugin") &&
+  CHECK_THAT(t.warnings[0], StartsWith("scene.xml:2:31: <medium type=\"rgbfog\">: unsupported medium plugin") &&
                                 Contains("vacuum in its place"));
   CHECK_THAT(t.warnings[1], Contains("unsupported subsurface plugin \"dipole\"") && Contains("the shape's BSDF alone renders it"));
   CHECK_THAT(t.warnings[2], Contains("unsupported medium plugin") && Contains("vacuum in its place"));
@@ -1271,16 +1272,99 @@ TEST_CASE("mitsuba: homogeneous media, their phase functions and constant volume
   CHECK(loaded.scene->media.size() == 2);
   CHECK(loaded.scene->camera_medium >= 0);
   CHECK(loaded.scene->has_media());
-  // A grid volume is not read yet: an error naming it, or with --ignore-unsupported a warning.
+  // A grid in a homogeneous medium: an error naming it (Mitsuba's homogeneous takes constants).
   const std::string grid = xml_scene(R"(<shape type="sphere"><bsdf type="null"/>
-    <medium type="heterogeneous" name="interior"><volume type="gridvolume" name="sigma_t"><string name="filename" value="a.vol"/></volume></medium>
+    <medium type="homogeneous" name="interior"><volume type="gridvolume" name="sigma_t"><string name="filename" value="a.vol"/></volume></medium>
   </shape>)");
-  CHECK_THAT(error_of([&] { translate(grid); }), Catch::Contains("scene.xml") && Catch::Contains("heterogeneous") &&
-                                                     Catch::Contains("supported: homogeneous"));
+  CHECK_THAT(error_of([&] { translate(grid); }), Catch::Contains("scene.xml") && Catch::Contains("gridvolume") &&
+                                                     Catch::Contains("supported: constvolume"));
   CHECK_THAT(error_of([&] { parse_scene(loadable(R"(<shape type="sphere"><bsdf type="null"/>
     <medium type="homogeneous" name="interior"><float name="sigma_t" value="-1"/></medium></shape>)"), "scene.xml", "."); }),
              Catch::Contains("scene.xml:") && Catch::Contains("sigma_t"));
   CHECK_THAT(error_of([&] { parse_scene(loadable(R"(<shape type="sphere"><bsdf type="null"/>
     <medium type="homogeneous" name="interior"><float name="albedo" value="1.5"/></medium></shape>)"), "scene.xml", "."); }),
              Catch::Contains("scene.xml:") && Catch::Contains("albedo") && Catch::Contains("[0, 1]"));
+}
+
+TEST_CASE("mitsuba: heterogeneous media read grid and constant volumes placed as Mitsuba 3 places them: the unit "
+          "cube under to_world (or the file's box), values at cell centres; the medium is empty outside that box",
+          "[mitsuba][media]") {
+  test::TempDir dir;
+  // A 2 x 1 x 1 grid: 1 in its low-x voxel, 3 in its high-x one.
+  VolumeGrid g;
+  g.nx = 2, g.ny = 1, g.nz = 1;
+  g.box.lo = Vec3(-5.0f);
+  g.box.hi = Vec3(5.0f);
+  g.values = {1.0f, 3.0f};
+  dir.write("two.vol", format_vol(g));
+  g.values = {0.5f, 0.8f};
+  dir.write("albedo.vol", format_vol(g));
+  const std::string body = R"(
+  <shape type="cube">
+    <transform name="to_world"><scale value="4"/></transform>
+    <bsdf type="null"/>
+    <medium type="heterogeneous" name="interior">
+      <float name="scale" value="0.5"/>
+      <volume type="gridvolume" name="sigma_t">
+        <string name="filename" value="two.vol"/>
+        <transform name="to_world"><scale x="2" y="1" z="1"/><translate x="-1" y="-0.5" z="-0.5"/></transform>
+      </volume>
+      <volume type="gridvolume" name="albedo">
+        <string name="filename" value="albedo.vol"/><boolean name="use_grid_bbox" value="true"/>
+        <string name="filter_type" value="nearest"/>
+      </volume>
+    </medium>
+  </shape>
+  <shape type="sphere">
+    <point name="center" x="20" y="0" z="0"/>
+    <bsdf type="null"/>
+    <medium type="heterogeneous" name="interior">
+      <volume type="constvolume" name="sigma_t"><float name="value" value="2"/>
+        <transform name="to_world"><translate x="19.5" y="-0.5" z="-0.5"/></transform></volume>
+    </medium>
+  </shape>)";
+  const std::string path = dir.write("scene.xml", loadable(body));
+  const json d = read_mitsuba(test::read_text(path), path, dir.path().string(), {}).doc;
+  INFO(d["media"].dump());
+  REQUIRE(d["media"].size() == 2);
+  // (The scene's media are the JSON block's in its key order: the grid's name sorts first.)
+  const std::string grid_name = d["objects"][0]["interior"], flat_name = d["objects"][1]["interior"];
+  REQUIRE(grid_name < flat_name);
+  const json& grid = d["media"][grid_name];
+  CHECK(grid["type"] == "heterogeneous");
+  CHECK(grid["sigma_t"]["type"] == "gridvolume");
+  CHECK(grid["sigma_t"]["voxels"] == "centres");
+  CHECK(grid["sigma_t"]["box"] == "unit");
+  CHECK(grid["albedo"]["box"] == "file");
+  CHECK(grid["albedo"]["filter"] == "nearest");
+  const json& flat = d["media"][flat_name];
+  CHECK(flat["sigma_t"]["type"] == "constvolume");
+  CHECK(flat["sigma_t"]["to_world"][0][3] == 19.5);
+  // Transmittance along x through each (ratio tracking, averaged): the grid's voxels sit at the
+  // centres of the two halves of [-1, 1] (x = -0.5 and 0.5; sigma_t 0.5 and 1.5), a ramp between
+  // them and held beyond: optical depth 0.25 + 1 + 0.75 = 2 over the box, nothing outside it
+  // though the cube spans [-4, 4]. The constant fills only the unit cube at 19.5..20.5 of the
+  // sphere [19, 21]: optical depth 2 as well.
+  const LoadedScene loaded = parse_scene(test::read_text(path), path, dir.path().string());
+  const Scene& scene = *loaded.scene;
+  REQUIRE(scene.media.size() == 2);
+  Sampler sampler(3);
+  auto mean_tr = [&](const Medium& m, const Ray& ray) {
+    double sum = 0;
+    for (int i = 0; i < 40000; ++i) sum += m.transmittance(ray, 20.0f, sampler).x;
+    return sum / 40000;
+  };
+  const Ray through{Vec3(-10.0f, 0.0f, 0.0f), Vec3(1.0f, 0.0f, 0.0f), kInfinity};
+  CHECK(mean_tr(*scene.media[0], through) == Approx(std::exp(-2.0)).epsilon(0.03));
+  const Ray far{Vec3(10.0f, 0.0f, 0.0f), Vec3(1.0f, 0.0f, 0.0f), kInfinity};
+  CHECK(mean_tr(*scene.media[1], far) == Approx(std::exp(-2.0)).epsilon(0.03));
+  // The medium's bounds: a ray missing the unit box under to_world passes untouched.
+  const Ray beside{Vec3(-10.0f, 0.7f, 0.0f), Vec3(1.0f, 0.0f, 0.0f), kInfinity};
+  CHECK(scene.media[0]->transmittance(beside, 20.0f, sampler).x == 1.0f);
+  // Mitsuba's wrap modes other than clamp are refused by name.
+  const std::string wrapped = dir.write("wrapped.xml", xml_scene(R"(<shape type="sphere"><bsdf type="null"/><medium type="heterogeneous" name="interior">
+      <volume type="gridvolume" name="sigma_t"><string name="filename" value="two.vol"/><string name="wrap_mode" value="repeat"/></volume>
+    </medium></shape>)"));
+  CHECK_THAT(error_of([&] { read_mitsuba(test::read_text(wrapped), wrapped, dir.path().string(), {}); }),
+             Contains("wrapped.xml:3:") && Contains("wrap_mode"));
 }

@@ -156,6 +156,8 @@ class Translator {
   // The name in "media" of a medium object (made once per object); "" where it is left out
   // (unsupported, with --ignore-unsupported).
   std::string medium(const XmlObject& o);
+  // A medium's <volume> child as our JSON (null where unsupported and skipped).
+  json volume(const XmlObject& k, const std::string& pointer, bool placed);
   std::map<const XmlObject*, std::string> media_;
   std::string camera_medium_;  // the sensor's
 };
