@@ -96,9 +96,6 @@ struct Loader {
     return out;
   }
 
-  // An affine transform as 3 or 4 rows of 4 numbers (the last row, if given, must be 0 0 0 1).
-  glm::mat4 read_affine(const json& m, const std::string& p);
-
   MeshData read_mesh(const json& j, const std::string& p);
   // A mesh_attribute texture naming an attribute no mesh carries is an error at its place.
   void check_mesh_attribute_textures();

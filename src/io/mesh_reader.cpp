@@ -83,8 +83,6 @@ void Loader::add_mesh_triangle(const MeshData& mesh, size_t i, std::vector<Primi
                mesh.attributes.empty() ? nullptr : &mesh.attributes[i]);
 }
 
-glm::mat4 Loader::read_affine(const json& m, const std::string& p) { return caustica::read_affine(r, m, p); }
-
 MeshData Loader::read_mesh(const json& j, const std::string& p) {
   MeshData mesh;
   std::vector<Vec3>& verts = mesh.verts;
@@ -126,7 +124,7 @@ MeshData Loader::read_mesh(const json& j, const std::string& p) {
   }
   if (j.contains("translate")) translate = r.vec3(j["translate"], child(p, "translate"));
   const bool has_matrix = j.contains("to_world");
-  const glm::mat4 to_world = has_matrix ? read_affine(j["to_world"], child(p, "to_world")) : glm::mat4(1.0f);
+  const glm::mat4 to_world = has_matrix ? read_affine(r, j["to_world"], child(p, "to_world")) : glm::mat4(1.0f);
   const glm::mat3 normal_matrix = glm::transpose(glm::inverse(glm::mat3(to_world)));
   const bool face_normals = j.contains("face_normals") && r.boolean(j["face_normals"], child(p, "face_normals"));
   if (j.contains("max_smooth_angle")) {

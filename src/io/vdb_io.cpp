@@ -176,33 +176,33 @@ VolumeGrid read_vdb_here(const std::string& path, const std::string& grid_name) 
   }
   if (!base->transform().isLinear()) fail("grid \"" + base->getName() + "\" has a non-linear (frustum) transform");
   VolumeGrid g;
-  // The active voxels' box, by a serial walk (OpenVDB's own evaluation runs threads).
   openvdb::CoordBBox box;
-  auto walk = [&](const auto& grid) {
+  // The active voxels' box (by a serial walk: OpenVDB's own evaluation runs threads), one voxel
+  // of background around it (the density falls to it), copied dense: `put` stores a value's
+  // `channels` floats.
+  auto read = [&](const auto& grid, int channels, auto put) {
     for (auto it = grid.cbeginValueOn(); it; ++it) {
       openvdb::CoordBBox b;
       it.getBoundingBox(b);
       box.expand(b);
     }
+    if (box.empty()) fail("grid \"" + base->getName() + "\" has no active voxels");
+    box.expand(1);
+    const openvdb::Coord dim = box.dim();
+    g.nx = dim.x();
+    g.ny = dim.y();
+    g.nz = dim.z();
+    g.channels = channels;
+    const uint64_t voxels = uint64_t(g.nx) * uint64_t(g.ny) * uint64_t(g.nz);
+    if (voxels > kMaxVoxels) fail("grid \"" + base->getName() + "\" spans " + std::to_string(voxels) + " voxels, more than the 2^30 read");
+    copy_dense(grid, box, g, put);
   };
-  if (auto fg = openvdb::gridConstPtrCast<openvdb::FloatGrid>(base)) walk(*fg);
-  else if (auto dg = openvdb::gridConstPtrCast<openvdb::DoubleGrid>(base)) walk(*dg);
-  else if (auto vg = openvdb::gridConstPtrCast<openvdb::Vec3SGrid>(base)) walk(*vg);
-  if (box.empty()) fail("grid \"" + base->getName() + "\" has no active voxels");
-  box.expand(1);  // one voxel of background around the active ones: the density falls to it
-  const openvdb::Coord dim = box.dim();
-  g.nx = dim.x();
-  g.ny = dim.y();
-  g.nz = dim.z();
-  const uint64_t voxels = uint64_t(g.nx) * uint64_t(g.ny) * uint64_t(g.nz);
-  if (voxels > kMaxVoxels) fail("grid \"" + base->getName() + "\" spans " + std::to_string(voxels) + " voxels, more than the 2^30 read");
-  if (auto fg = openvdb::gridPtrCast<openvdb::FloatGrid>(base)) {
-    copy_dense(*fg, box, g, [](float v, float* o) { o[0] = v; });
-  } else if (auto dg = openvdb::gridPtrCast<openvdb::DoubleGrid>(base)) {
-    copy_dense(*dg, box, g, [](double v, float* o) { o[0] = float(v); });
-  } else if (auto vg = openvdb::gridPtrCast<openvdb::Vec3SGrid>(base)) {
-    g.channels = 3;
-    copy_dense(*vg, box, g, [](const openvdb::Vec3s& v, float* o) { o[0] = v.x(), o[1] = v.y(), o[2] = v.z(); });
+  if (auto fg = openvdb::gridConstPtrCast<openvdb::FloatGrid>(base)) {
+    read(*fg, 1, [](float v, float* o) { o[0] = v; });
+  } else if (auto dg = openvdb::gridConstPtrCast<openvdb::DoubleGrid>(base)) {
+    read(*dg, 1, [](double v, float* o) { o[0] = float(v); });
+  } else if (auto vg = openvdb::gridConstPtrCast<openvdb::Vec3SGrid>(base)) {
+    read(*vg, 3, [](const openvdb::Vec3s& v, float* o) { o[0] = v.x(), o[1] = v.y(), o[2] = v.z(); });
   } else {
     fail("grid \"" + base->getName() + "\" holds " + base->valueType() + " values; float, double or vec3s grids are read");
   }

@@ -10,11 +10,14 @@ namespace caustica::mitsuba_translation {
 // A <volume> inside a medium: a homogeneous medium takes a constvolume's value; with `placed`
 // (a heterogeneous medium's sigma_t, or its albedo grid) a volume block placed as Mitsuba places it (the unit cube under to_world, or the grid
 // file's box with use_grid_bbox; voxel values at the cells' centres, clamped at the edges).
+// A coefficient: a number, or a colour as given (the reader refuses a negative one, or an
+// albedo above 1, instead of clamping it).
+json Translator::coefficient(const XmlProperty& q) {
+  if (q.kind == XmlProperty::Float || q.kind == XmlProperty::Integer) return q.number;
+  return color_json(q, SpectrumUse::Unbounded);
+}
+
 json Translator::volume(const XmlObject& k, const std::string& p, bool placed) {
-  auto coefficient = [&](const XmlProperty& q) -> json {
-    if (q.kind == XmlProperty::Float || q.kind == XmlProperty::Integer) return q.number;
-    return color_json(q, SpectrumUse::Unbounded);
-  };
   Props vp(k);
   if (k.type == "constvolume") {
     const XmlProperty* v = vp.get("value");
@@ -73,12 +76,6 @@ std::string Translator::medium(const XmlObject& o) {
   note(p, o.where);
   json m = {{"type", o.type}};
   Props props(o);
-  // A coefficient: a number, or a colour as given (the reader refuses a negative one, or an
-  // albedo above 1, instead of clamping it).
-  auto coefficient = [&](const XmlProperty& q) -> json {
-    if (q.kind == XmlProperty::Float || q.kind == XmlProperty::Integer) return q.number;
-    return color_json(q, SpectrumUse::Unbounded);
-  };
   for (const char* key : {"sigma_t", "albedo", "scale"}) {
     if (const XmlProperty* q = props.get(key)) {
       m[key] = key == std::string("scale") ? json(number(*q)) : coefficient(*q);

@@ -158,6 +158,8 @@ class Translator {
   std::string medium(const XmlObject& o);
   // A medium's <volume> child as our JSON (null where unsupported and skipped).
   json volume(const XmlObject& k, const std::string& pointer, bool placed);
+  // A medium's coefficient (a number or a colour) as our JSON.
+  json coefficient(const XmlProperty& q);
   std::map<const XmlObject*, std::string> media_;
   std::string camera_medium_;  // the sensor's
 };
