@@ -53,7 +53,7 @@ Color estimate_direct(const Scene& scene, const SurfaceHit& hit, const Vec3& wo,
   if (!choose_light_point(scene, hit.p, hit.frame.n, u_light, u, pmf, ls)) return Color(0.0f);
   const Vec3 wo_l = hit.frame.to_local(wo), wi_l = hit.frame.to_local(ls.wi);
   if (hit.leaks(ls.wi)) return Color(0.0f);
-  const Color f = hit.material->eval(wo_l, wi_l, hit.sp);
+  const Color f = hit.material->eval(wo_l, wi_l, hit.sp) * radiance_scale(*hit.material, wo_l, wi_l, hit.sp);
   if (is_black(f)) return Color(0.0f);
   ++sampler.rays;
   // (Without media, occluded() alone.)

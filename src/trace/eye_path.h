@@ -37,10 +37,11 @@ struct EyePath {
   bool scatter(const SurfaceHit& hit, const Vec3& wo, Sampler& sampler, Ray& ray) {
     BsdfSample bs;
     const Vec2 u = sampler.next2d();
-    if (!hit.material->sample(hit.frame.to_local(wo), u, sampler.next1d(), bs, hit.sp)) return false;
+    const Vec3 wo_l = hit.frame.to_local(wo);
+    if (!hit.material->sample(wo_l, u, sampler.next1d(), bs, hit.sp)) return false;
     const Vec3 wi = hit.frame.to_world(bs.wi);
     if (hit.leaks(wi)) return false;
-    beta *= bs.weight;
+    beta *= radiance_weight(*hit.material, wo_l, bs, hit.sp);
     crossed_null = transparent_nulls && bs.null();
     if (!crossed_null) from = BsdfVertex{bs.delta, bs.pdf, hit.p, hit.frame.n};
     ray = spawn_ray(hit.p, hit.n, wi);

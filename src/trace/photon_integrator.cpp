@@ -389,7 +389,7 @@ Color PhotonIntegrator::final_gather(const Scene& scene, const SurfaceHit& hit, 
     if (skip_delta && bs.delta) return Color(0.0f);  // the caller traces the delta lobes
     const Vec3 wi = hit.frame.to_world(bs.wi);
     if (hit.leaks(wi)) return Color(0.0f);
-    Color sum(0.0f), throughput = bs.weight;
+    Color sum(0.0f), throughput = radiance_weight(*hit.material, wo_l, bs, hit.sp);
     Ray ray = spawn_ray(hit.p, hit.n, wi);
     BsdfVertex from{bs.delta, ratio * bs.pdf, hit.p, hit.frame.n};
     // The emission a segment reaches is the gather's when the segment starts at the gather
@@ -426,10 +426,11 @@ Color PhotonIntegrator::final_gather(const Scene& scene, const SurfaceHit& hit, 
         // The photon estimate has no delta part: a coat (plastic) passes the gather ray on, as
         // the caustic map's photons pass through it; the emission it reaches is the caustic map's.
         BsdfSample coat;
-        if (!delta_continuation(m, g.frame.to_local(-ray.dir), g.sp, [&] { return sampler.next1d(); }, coat)) break;
+        const Vec3 cwo = g.frame.to_local(-ray.dir);
+        if (!delta_continuation(m, cwo, g.sp, [&] { return sampler.next1d(); }, coat)) break;
         const Vec3 cwi = g.frame.to_world(coat.wi);
         if (g.leaks(cwi)) break;
-        throughput *= coat.weight;
+        throughput *= radiance_weight(m, cwo, coat, g.sp);
         from = BsdfVertex{};
         counts_emission = past_soft;
         ray = spawn_ray(g.p, g.n, cwi);
@@ -442,10 +443,11 @@ Color PhotonIntegrator::final_gather(const Scene& scene, const SurfaceHit& hit, 
       if (past_soft && !m.is_specular()) sum += throughput * estimate_direct(scene, g, gwo, sampler, 1.0f);
       BsdfSample ss;
       const Vec2 us = sampler.next2d();
-      if (!m.sample(g.frame.to_local(gwo), us, sampler.next1d(), ss, g.sp)) break;
+      const Vec3 gwo_l = g.frame.to_local(gwo);
+      if (!m.sample(gwo_l, us, sampler.next1d(), ss, g.sp)) break;
       const Vec3 gwi = g.frame.to_world(ss.wi);
       if (g.leaks(gwi)) break;
-      throughput *= ss.weight;
+      throughput *= radiance_weight(m, gwo_l, ss, g.sp);
       from = BsdfVertex{ss.delta, ss.pdf, g.p, g.frame.n};
       counts_emission = past_soft;
       ray = spawn_ray(g.p, g.n, gwi);
@@ -540,6 +542,7 @@ Color PhotonIntegrator::trace_eye(const Ray& start, const Scene& scene, Sampler&
           n_coat = 1;
         }
       }
+      for (int i = 0; i < n_coat; ++i) coat[i].weight = radiance_weight(m, wo_l, coat[i], hit.sp);
       const bool trace_coat = n_coat > 0;  // (gathering, listed only with splits left)
       if (gathering) {
         L += beta * final_gather(scene, hit, wo, sampler, scratch, trace_coat, depth, ng, ratio, beta, probe);
@@ -565,7 +568,8 @@ Color PhotonIntegrator::trace_eye(const Ray& start, const Scene& scene, Sampler&
       // at random: choosing leaves bright speckles (the light reflected in the glass) that
       // take many samples to average out.
       Color split(0.0f);
-      for (const BsdfSample& lobe : lobes) {
+      for (BsdfSample& lobe : lobes) {
+        lobe.weight = radiance_weight(m, wo_l, lobe, hit.sp);
         if (is_black(lobe.weight)) continue;
         const Ray next = spawn_ray(hit.p, hit.n, hit.frame.to_world(lobe.wi));
         const Probe::Nested nested(probe, beta * lobe.weight);

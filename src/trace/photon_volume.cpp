@@ -125,12 +125,11 @@ Color PhotonIntegrator::trace_media_eye(const Ray& camera_ray, const Scene& scen
       if (est.max_bounces >= 1) L += beta * radiance_estimate(global_, hit, wo, with_bounces(est, 1, est.max_bounces), scratch);
       // A delta lobe beside the estimate's (plastic's coat) carries the path on.
       BsdfSample coat;
-      if (!m.has(kBsdfSpecular) ||
-          !delta_continuation(m, hit.frame.to_local(wo), hit.sp, [&] { return sampler.next1d(); }, coat))
-        break;
+      const Vec3 wo_l = hit.frame.to_local(wo);
+      if (!m.has(kBsdfSpecular) || !delta_continuation(m, wo_l, hit.sp, [&] { return sampler.next1d(); }, coat)) break;
       const Vec3 wi = hit.frame.to_world(coat.wi);
       if (hit.leaks(wi)) break;
-      beta *= coat.weight;
+      beta *= radiance_weight(m, wo_l, coat, hit.sp);
       path.from = BsdfVertex{};
       path.crossed_null = false;
       ray = spawn_ray(hit.p, hit.n, wi);

@@ -91,7 +91,7 @@ Color SppmIntegrator::Li(const Ray& camera_ray, const Scene& scene, Sampler& sam
           break;
         const Vec3 wi = hit.frame.to_world(coat[0].wi);
         if (hit.leaks(wi)) break;
-        path.beta *= coat[0].weight / p_coat;
+        path.beta *= radiance_weight(m, hit.frame.to_local(wo), coat[0], hit.sp) / p_coat;
         path.from = BsdfVertex{};
         ray = spawn_ray(hit.p, hit.n, wi);
         continue;

@@ -28,7 +28,7 @@ Color WhittedIntegrator::trace(const Ray& ray, const Scene& scene, Sampler& samp
   for (int i = 0; i < n; ++i) {
     if (is_black(lobes[i].weight)) continue;
     const Ray next = spawn_ray(hit.p, hit.n, hit.frame.to_world(lobes[i].wi));
-    L += lobes[i].weight * trace(next, scene, sampler, depth + 1);
+    L += radiance_weight(m, wo_l, lobes[i], hit.sp) * trace(next, scene, sampler, depth + 1);
   }
   return L;
 }

@@ -22,6 +22,12 @@ class BlendBsdf final : public Bsdf {
   uint32_t flags() const override { return a_->flags() | b_->flags(); }
   float glossy_roughness() const override { return narrowest_glossy(*a_, *b_); }
   Color albedo(const ShadingPoint& sp = {}) const override;
+  // The refracting component's (the first's when both refract: blends of two indices are
+  // approximated by it).
+  float refraction_eta(const Vec3& wo, const ShadingPoint& sp = {}) const override {
+    const float a = a_->refraction_eta(wo, sp);
+    return a != 1.0f ? a : b_->refraction_eta(wo, sp);
+  }
   // The weight at a shading point, in [0, 1].
   float weight(const ShadingPoint& sp) const;
 

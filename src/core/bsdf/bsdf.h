@@ -73,6 +73,11 @@ class Bsdf {
   // The probability that a ray stops at the surface (Mitsuba's `mask`); 1 for opaque ones.
   virtual float opacity(const ShadingPoint& = {}) const { return 1.0f; }
   virtual bool has_mask() const { return false; }
+  // For a BSDF that refracts: the index on the far side of the boundary over the index on wo's
+  // side (eta_t / eta_i seen from the viewer), 1 for one that does not. eval() and sample()
+  // weights are the adjoint's, right for photons (flux); radiance crossing the boundary towards
+  // wo is scaled by 1 / eta^2 more (radiance_scale below; Veach 1997, ch. 5).
+  virtual float refraction_eta(const Vec3& /*wo*/, const ShadingPoint& = {}) const { return 1.0f; }
 
   bool has(uint32_t flag) const { return (flags() & flag) != 0; }
   // Only delta lobes: no direction can be evaluated, only sampled.
@@ -84,6 +89,19 @@ class Bsdf {
   // a final gather's second bounce may read from the irradiance about the surface's.
   virtual bool diffuse_in_some_frame() const { return is_lambertian(); }
 };
+
+// What turns a BSDF weight for (wo, wi) into the weight of radiance arriving along wi and
+// leaving along wo: 1 / eta^2 for a refraction (wi on the other side), 1 otherwise. Eye paths
+// (next-event estimation, sampled and split lobes) take it; photons do not.
+inline float radiance_scale(const Bsdf& m, const Vec3& wo, const Vec3& wi, const ShadingPoint& sp = {}) {
+  if (wo.z * wi.z >= 0.0f) return 1.0f;
+  const float eta = m.refraction_eta(wo, sp);
+  return 1.0f / (eta * eta);
+}
+// A sample's weight for radiance (an eye path's): its weight times radiance_scale.
+inline Color radiance_weight(const Bsdf& m, const Vec3& wo, const BsdfSample& s, const ShadingPoint& sp = {}) {
+  return s.weight * radiance_scale(m, wo, s.wi, sp);
+}
 
 // The glossy roughness of a BSDF made of two (twosided, blendbsdf): the narrower glossy lobe's.
 float narrowest_glossy(const Bsdf& a, const Bsdf& b);

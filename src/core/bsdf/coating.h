@@ -33,6 +33,9 @@ class Coating final : public Bsdf {
   float glossy_roughness() const override;
   Color albedo(const ShadingPoint& sp = {}) const override;
   bool is_lambertian() const override { return false; }
+  // A refracting base's index ratio; the layer's own is left out (an approximation: coated
+  // glass is not in any scene we know).
+  float refraction_eta(const Vec3& wo, const ShadingPoint& sp = {}) const override { return nested_->refraction_eta(wo, sp); }
 
  private:
   // w refracted into the layer on its own side (Snell's law); false under total internal

@@ -1,7 +1,8 @@
 // Dielectrics: the smooth `dielectric` (our `glass`), `thindielectric` (a thin pane: no
 // refraction, inter-reflections summed) and the microfacet `roughdielectric` (Walter et al.
-// 2007). eta is the interior index over the exterior one; the normal points outside. Radiance
-// crossing the boundary is not scaled by eta^2, in every integrator alike.
+// 2007). eta is the interior index over the exterior one; the normal points outside. Weights are
+// the adjoint's (photons carry flux across unchanged); eye paths scale radiance that crosses
+// the boundary by 1 / eta^2 (radiance_scale in bsdf.h).
 #pragma once
 #include "core/bsdf/fresnel.h"
 #include "core/bsdf/microfacet.h"
@@ -33,6 +34,7 @@ class Dielectric final : public SpecularBsdf {
   // Refracted local direction for wo; false under total internal reflection.
   bool refract(const Vec3& wo, Vec3& wt) const;
   float eta() const { return eta_; }
+  float refraction_eta(const Vec3& wo, const ShadingPoint& = {}) const override { return wo.z > 0.0f ? eta_ : 1.0f / eta_; }
 
  private:
   float eta_;
@@ -70,6 +72,7 @@ class RoughDielectric final : public Bsdf {
   uint32_t flags() const override { return kBsdfGlossy | kBsdfReflection | kBsdfTransmission; }
   float glossy_roughness() const override { return rough_.narrowest(); }
   Color albedo(const ShadingPoint& sp = {}) const override { return tint_.albedo(sp); }
+  float refraction_eta(const Vec3& wo, const ShadingPoint& = {}) const override { return wo.z > 0.0f ? eta_ : 1.0f / eta_; }
 
  private:
   // The half vector of (wo, wi), facing +z, and the relative index across it; false when the

@@ -26,6 +26,7 @@ class Mask final : public Bsdf {
   float glossy_roughness() const override { return nested_->glossy_roughness(); }
   Color albedo(const ShadingPoint& sp = {}) const override { return nested_->albedo(sp); }
   bool has_mask() const override { return true; }
+  float refraction_eta(const Vec3& wo, const ShadingPoint& sp = {}) const override { return nested_->refraction_eta(wo, sp); }
   // A masked null surface (or mask) lets through what either lets through.
   float opacity(const ShadingPoint& sp = {}) const override {
     return std::clamp(average(opacity_.at(sp)), 0.0f, 1.0f) * nested_->opacity(sp);

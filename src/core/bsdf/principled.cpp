@@ -224,6 +224,11 @@ uint32_t Principled::flags() const {
   return f;
 }
 
+float Principled::refraction_eta(const Vec3& wo, const ShadingPoint&) const {
+  if (!s_.spec_trans.has) return 1.0f;
+  return wo.z > 0.0f ? s_.eta : 1.0f / s_.eta;
+}
+
 Color Principled::albedo(const ShadingPoint& sp) const {
   // An estimate: the diffuse part, the metal's base colour, the transmission's tint, and a
   // dielectric's reflectance at normal incidence.

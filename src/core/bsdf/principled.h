@@ -4,7 +4,8 @@
 // base_color, by `metallic`) and a tinted one (`spec_tint`), GGX transmission (`spec_trans`,
 // tinted by sqrt(base_color)), and a GTR1 clearcoat. Seen from below (inside), only the
 // dielectric's reflection and transmission remain. Every parameter but eta and specular may be
-// a texture. As in our other dielectrics, transmitted radiance is not scaled by 1 / eta^2.
+// a texture. As in our other dielectrics, weights are the adjoint's; eye paths scale transmitted
+// radiance by 1 / eta^2 (radiance_scale).
 #pragma once
 #include <memory>
 #include "core/bsdf/bsdf.h"
@@ -28,6 +29,7 @@ class Principled final : public Bsdf {
   uint32_t flags() const override;
   float glossy_roughness() const override { return s_.glossy_roughness(); }
   Color albedo(const ShadingPoint& sp = {}) const override;
+  float refraction_eta(const Vec3& wo, const ShadingPoint& = {}) const override;
 
  private:
   struct Local;  // the parameters at a shading point

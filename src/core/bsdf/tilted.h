@@ -21,6 +21,9 @@ class TiltedFrameBsdf : public Bsdf {
   float glossy_roughness() const final { return nested_->glossy_roughness(); }
   Color albedo(const ShadingPoint& sp = {}) const final { return nested_->albedo(sp); }
   bool has_mask() const final { return nested_->has_mask(); }
+  float refraction_eta(const Vec3& wo, const ShadingPoint& sp = {}) const final {
+    return nested_->refraction_eta(frame_at(sp).to_local(wo), sp);
+  }
   float opacity(const ShadingPoint& sp = {}) const final { return nested_->opacity(sp); }
   // The tilted frame at a shading point, in the local frame's coordinates.
   virtual Frame frame(const ShadingPoint& sp) const = 0;

@@ -30,6 +30,10 @@ Color TwoSided::null_transmission(const Vec3& wo, const ShadingPoint& sp) const 
   return wo.z >= 0.0f ? front_->null_transmission(wo, sp) : back_->null_transmission(flip_z(wo), sp);
 }
 
+float TwoSided::refraction_eta(const Vec3& wo, const ShadingPoint& sp) const {
+  return wo.z >= 0.0f ? front_->refraction_eta(wo, sp) : back_->refraction_eta(flip_z(wo), sp);
+}
+
 std::unique_ptr<Bsdf> TwoSided::create(const Params& p) {
   const std::vector<const Bsdf*> sides = p.bsdfs("bsdf", true);
   return std::make_unique<TwoSided>(sides.front(), sides.back());

@@ -20,6 +20,7 @@ class TwoSided final : public Bsdf {
   float glossy_roughness() const override { return narrowest_glossy(*front_, *back_); }
   Color albedo(const ShadingPoint& sp = {}) const override { return front_->albedo(sp); }
   Color null_transmission(const Vec3& wo, const ShadingPoint& sp = {}) const override;
+  float refraction_eta(const Vec3& wo, const ShadingPoint& sp = {}) const override;
   // A two-sided mask or null surface lets rays through as its front does (opacity() does not
   // know the side a ray comes from; one BSDF on both sides is exact).
   bool has_mask() const override { return front_->has_mask() || back_->has_mask(); }
