@@ -38,6 +38,43 @@ std::string convergence_csv(const std::vector<ConvergeRow>& rows, std::optional<
   return s.str();
 }
 
+Image converge_integrator(Scene& scene, Integrator& integ, const std::string& name, double time,
+                          const std::vector<double>& checkpoints, const Image& reference,
+                          const ConvergeRunOptions& o, std::vector<ConvergeRow>& rows, RenderStats* stats_out,
+                          double* preprocess_seconds) {
+  const int rank = o.cluster ? o.cluster->rank() : 0, ranks = o.cluster ? o.cluster->size() : 1;
+  const auto t0 = std::chrono::steady_clock::now();
+  integ.preprocess(scene, {scene.render.seed, o.quiet, o.cancel, rank, scene.render.spp, time, ranks});
+  const double pre = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const size_t first = rows.size();
+  auto record = [&](double seconds, long passes, const Image& mean) {
+    const ErrorMetrics m = compare_images(mean, reference);
+    rows.push_back({name, seconds, passes, m.rmse, m.relmse});
+    if (o.on_row) o.on_row(rows.back());
+  };
+  size_t next = 0;
+  RenderOptions options;
+  options.job = render_job(scene.render, std::max(1e-3, time - pre));
+  options.quiet = o.quiet;
+  options.cluster = o.cluster;
+  // A mean image at the first pass past each checkpoint (on rank 0's clock).
+  options.want_pass = [&](double seconds) { return next < checkpoints.size() && pre + seconds >= checkpoints[next]; };
+  options.on_pass = [&](int passes, double seconds, const Image& mean) {
+    const double t = pre + seconds;
+    record(t, passes, mean);
+    while (next < checkpoints.size() && t >= checkpoints[next]) ++next;
+  };
+  options.cancel = o.cancel;
+  RenderStats stats;
+  Image image = render_image(scene, integ, options, stats);
+  if (rank == 0 && stats.passes > 0 && (rows.size() == first || rows.back().passes != stats.passes)) {
+    record(pre + stats.seconds, stats.passes, image);
+  }
+  if (stats_out) *stats_out = stats;
+  if (preprocess_seconds) *preprocess_seconds = pre;
+  return image;
+}
+
 int run_converge(const ConvergeArgs& args) {
   // Under MPI each integrator's passes are split among the ranks; rank 0 measures and writes.
   const Cluster& cluster = Cluster::world();
@@ -114,37 +151,21 @@ int run_converge(const ConvergeArgs& args) {
   for (size_t i = 0; i < integrators.size() && !interrupted; ++i) {
     Integrator& integ = *integrators[i];
     const std::string name = args.integrators[i];
-    const auto t0 = std::chrono::steady_clock::now();
-    integ.preprocess(scene, {scene.render.seed, quiet, &StopSignals::flag(), cluster.rank(), scene.render.spp, args.time,
-                             cluster.size()});
-    const double pre = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    size_t next = 0;
-    ReportSeries series{name, {}};
-    auto record = [&](double seconds, long passes, const Image& mean) {
-      const ErrorMetrics m = compare_images(mean, reference);
-      rows.push_back({name, seconds, passes, m.rmse, m.relmse});
-      series.points.push_back({seconds, m.relmse, m.rmse, passes});
-      if (!quiet) {
-        std::cerr << name << ": " << std::fixed << std::setprecision(1) << seconds << " s, " << passes
-                  << " passes, relMSE " << std::scientific << std::setprecision(3) << m.relmse;
-        if (has_floor) std::cerr << " (" << m.relmse - combined.floor << " without the floor)";
-        std::cerr << std::defaultfloat << "\n";
-      }
+    ConvergeRunOptions run;
+    run.quiet = quiet;
+    run.cluster = &cluster;
+    run.cancel = &StopSignals::flag();
+    run.on_row = [&](const ConvergeRow& r) {
+      if (quiet) return;
+      std::cerr << name << ": " << std::fixed << std::setprecision(1) << r.seconds << " s, " << r.passes
+                << " passes, relMSE " << std::scientific << std::setprecision(3) << r.relmse;
+      if (has_floor) std::cerr << " (" << r.relmse - combined.floor << " without the floor)";
+      std::cerr << std::defaultfloat << "\n";
     };
-    RenderOptions options;
-    options.job = render_job(scene.render, std::max(1e-3, args.time - pre));
-    options.quiet = quiet;
-    options.cluster = &cluster;
-    // A mean image at the first pass past each checkpoint (on rank 0's clock).
-    options.want_pass = [&](double seconds) { return next < checkpoints.size() && pre + seconds >= checkpoints[next]; };
-    options.on_pass = [&](int passes, double seconds, const Image& mean) {
-      const double t = pre + seconds;
-      record(t, passes, mean);
-      while (next < checkpoints.size() && t >= checkpoints[next]) ++next;
-    };
-    options.cancel = &StopSignals::flag();
+    const size_t first_row = rows.size();
     RenderStats stats;
-    const Image image = render_image(scene, integ, options, stats);
+    double pre = 0;
+    const Image image = converge_integrator(scene, integ, name, args.time, checkpoints, reference, run, rows, &stats, &pre);
     interrupted = stats.interrupted;
     if (interrupted) {
       std::string left;
@@ -154,7 +175,8 @@ int run_converge(const ConvergeArgs& args) {
     }
     if (!root || stats.passes == 0) continue;
     const double total = pre + stats.seconds;
-    if (series.points.empty() || series.points.back().passes != stats.passes) record(total, stats.passes, image);
+    ReportSeries series{name, {}};
+    for (size_t r = first_row; r < rows.size(); ++r) series.points.push_back({rows[r].seconds, rows[r].relmse, rows[r].rmse, rows[r].passes});
     report.series.push_back(series);
     // The late log-log slope of the raw figures, and of those without the reference's floor.
     auto add_rate = [&](const ReportSeries& s, const std::string& what, const std::string& fact) {
