@@ -6,6 +6,8 @@ packages=(build-essential cmake pkg-config libglm-dev libnanoflann-dev libopenim
           openimageio-tools libpugixml-dev zlib1g-dev libembree-dev
           libopenvdb-dev libboost-dev  # OpenVDB grids for heterogeneous media (its headers include Boost's)
           libopenmpi-dev openmpi-bin  # MPI: one image on many machines (docs/cluster.md)
+          python3-dev python3-pybind11 pybind11-dev python3-numpy  # `import caustica` (docs/python.md)
+          python3-pytest python3-matplotlib python3-nbconvert python3-ipykernel jupyter-notebook  # its tests and examples
           glmark2-data)  # glmark2-data: the Stanford bunny of scenes/cornell-bunny.json
 packages+=("$@")
 missing=()
