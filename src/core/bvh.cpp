@@ -43,8 +43,9 @@ void Bvh::build(std::vector<Primitive> prims) {
   accel_.clear();
   accel_.reserve(prims_.size());
   for (const Primitive& p : prims_) {
-    if (p.kind == ShapeKind::Sphere) accel_.push_back({p.p0, Vec3(p.radius(), 0, 0), Vec3(0.0f), 1});
-    else accel_.push_back({p.p0, p.p1 - p.p0, p.p2 - p.p0, 0});
+    if (p.kind == ShapeKind::Sphere) accel_.push_back({p.p0, Vec3(p.radius(), 0, 0), Vec3(0.0f), p.kind});
+    else if (p.kind == ShapeKind::Triangle) accel_.push_back({p.p0, p.p1 - p.p0, p.p2 - p.p0, p.kind});
+    else accel_.push_back({Vec3(0.0f), Vec3(0.0f), Vec3(0.0f), p.kind});
   }
   input_.clear();
   input_.shrink_to_fit();
@@ -148,8 +149,9 @@ bool Bvh::traverse(const Ray& ray, Hit& hit) const {
       for (uint32_t i = nd.offset; i < nd.offset + nd.count; ++i) {
         const Accel& a = accel_[i];
         float t, u, v;
-        const bool h = a.is_sphere ? intersect_sphere(ray, a.p0, a.e1.x, tmax, t)
-                                   : intersect_triangle_edges(ray, a.p0, a.e1, a.e2, tmax, t, u, v);
+        const bool h = a.kind == ShapeKind::Triangle ? intersect_triangle_edges(ray, a.p0, a.e1, a.e2, tmax, t, u, v)
+                       : a.kind == ShapeKind::Sphere ? intersect_sphere(ray, a.p0, a.e1.x, tmax, t)
+                                                     : intersect_primitive(ray, prims_[i], tmax, t);
         if (h) {
           if (AnyHit) return true;
           tmax = t;

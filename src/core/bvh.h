@@ -29,7 +29,7 @@ class Bvh final : public Accelerator {
   // What the hot loop reads: a triangle as a vertex and two edges, or a sphere (p0, radius).
   struct Accel {
     Vec3 p0, e1, e2;
-    uint32_t is_sphere;
+    ShapeKind kind;  // an SDF voxel is tested through prims_
   };
   struct BuildItem {
     Bounds bounds;

@@ -1,14 +1,16 @@
 // Embree 3 backend; see embree_accel.h.
 #ifdef CAUSTICA_EMBREE
 #include "core/embree_accel.h"
+#include <algorithm>
 #include <cmath>
 #include "core/error.h"
 
 namespace caustica {
 namespace {
 
-// User geometry: the spheres, in Embree's primID order.
-void sphere_bounds(const RTCBoundsFunctionArguments* args) {
+// User geometry: the spheres and SDF voxels, in Embree's primID order, tested as our BVH tests
+// them (intersect_primitive).
+void user_bounds(const RTCBoundsFunctionArguments* args) {
   const Primitive& p = static_cast<const Primitive*>(args->geometryUserPtr)[args->primID];
   const Bounds b = p.bounds();
   args->bounds_o->lower_x = b.lo.x, args->bounds_o->lower_y = b.lo.y, args->bounds_o->lower_z = b.lo.z;
@@ -19,25 +21,37 @@ Ray to_ray(const RTCRay& r) {
   return Ray{Vec3(r.org_x, r.org_y, r.org_z), Vec3(r.dir_x, r.dir_y, r.dir_z), r.tfar};
 }
 
-void sphere_intersect(const RTCIntersectFunctionNArguments* args) {
+void user_intersect(const RTCIntersectFunctionNArguments* args) {
   // rtcIntersect1 only: N is 1.
   if (!args->valid[0]) return;
   RTCRayHit* rh = reinterpret_cast<RTCRayHit*>(args->rayhit);
   const Primitive& p = static_cast<const Primitive*>(args->geometryUserPtr)[args->primID];
   float t;
-  if (!intersect_sphere(to_ray(rh->ray), p.p0, p.radius(), rh->ray.tfar, t) || !(t > rh->ray.tnear)) return;
+  if (!intersect_primitive(to_ray(rh->ray), p, rh->ray.tfar, t) || !(t > rh->ray.tnear)) return;
   rh->ray.tfar = t;
   rh->hit.geomID = args->geomID;
   rh->hit.primID = args->primID;
   rh->hit.instID[0] = args->context->instID[0];
 }
 
-void sphere_occluded(const RTCOccludedFunctionNArguments* args) {
+void user_occluded(const RTCOccludedFunctionNArguments* args) {
   if (!args->valid[0]) return;
   RTCRay* r = reinterpret_cast<RTCRay*>(args->ray);
   const Primitive& p = static_cast<const Primitive*>(args->geometryUserPtr)[args->primID];
   float t;
-  if (intersect_sphere(to_ray(*r), p.p0, p.radius(), r->tfar, t) && t > r->tnear) r->tfar = -INFINITY;
+  if (intersect_primitive(to_ray(*r), p, r->tfar, t) && t > r->tnear) r->tfar = -INFINITY;
+}
+
+// Curves' backfaces are culled (Embree 3 reports a ray leaving a curve it started in; our BVH,
+// Embree 4 and Mitsuba do not): a hit whose normal faces along the ray is passed over.
+void cull_curve_backface(const RTCFilterFunctionNArguments* args) {
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] == 0) continue;
+    const float along = RTCRayN_dir_x(args->ray, args->N, i) * RTCHitN_Ng_x(args->hit, args->N, i) +
+                        RTCRayN_dir_y(args->ray, args->N, i) * RTCHitN_Ng_y(args->hit, args->N, i) +
+                        RTCRayN_dir_z(args->ray, args->N, i) * RTCHitN_Ng_z(args->hit, args->N, i);
+    if (along > 0.0f) args->valid[i] = 0;
+  }
 }
 
 bool track_memory(void* user, ssize_t bytes, bool) {
@@ -65,8 +79,13 @@ EmbreeAccel::EmbreeAccel(std::vector<Primitive> prims) : prims_(std::move(prims)
   scene_ = rtcNewScene(device_);
   rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
   rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
+  auto attach = [&](RTCGeometry g, unsigned id) {
+    rtcCommitGeometry(g);
+    rtcAttachGeometryByID(scene_, g, id);
+    rtcReleaseGeometry(g);
+  };
   for (uint32_t i = 0; i < prims_.size(); ++i) {
-    (prims_[i].kind == ShapeKind::Sphere ? spheres_ : triangles_).push_back(i);
+    (prims_[i].kind == ShapeKind::Triangle ? triangles_ : prims_[i].kind == ShapeKind::LinearCurve ? curves_ : user_).push_back(i);
     bounds_.extend(prims_[i].bounds());
   }
   if (!triangles_.empty()) {
@@ -83,23 +102,42 @@ EmbreeAccel::EmbreeAccel(std::vector<Primitive> prims) : prims_(std::move(prims)
         idx[3 * i + size_t(k)] = unsigned(3 * i + size_t(k));
       }
     }
-    rtcCommitGeometry(g);
-    rtcAttachGeometryByID(scene_, g, 0);
-    rtcReleaseGeometry(g);
+    attach(g, 0);
   }
-  if (!spheres_.empty()) {
-    sphere_prims_.reserve(spheres_.size());
-    for (uint32_t i : spheres_) sphere_prims_.push_back(prims_[i]);
+  if (!user_.empty()) {
+    user_prims_.reserve(user_.size());
+    for (uint32_t i : user_) user_prims_.push_back(prims_[i]);
     RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_USER);
-    rtcSetGeometryUserPrimitiveCount(g, unsigned(spheres_.size()));
-    rtcSetGeometryUserData(g, sphere_prims_.data());
-    rtcSetGeometryBoundsFunction(g, sphere_bounds, nullptr);
-    rtcSetGeometryIntersectFunction(g, sphere_intersect);
-    rtcSetGeometryOccludedFunction(g, sphere_occluded);
-    rtcCommitGeometry(g);
-    sphere_geometry_ = 1;
-    rtcAttachGeometryByID(scene_, g, sphere_geometry_);
-    rtcReleaseGeometry(g);
+    rtcSetGeometryUserPrimitiveCount(g, unsigned(user_.size()));
+    rtcSetGeometryUserData(g, user_prims_.data());
+    rtcSetGeometryBoundsFunction(g, user_bounds, nullptr);
+    rtcSetGeometryIntersectFunction(g, user_intersect);
+    rtcSetGeometryOccludedFunction(g, user_occluded);
+    user_geometry_ = 1;
+    attach(g, user_geometry_);
+  }
+  if (!curves_.empty()) {
+    // Embree's round linear curves: each segment its own two control points (x, y, z, radius),
+    // so that no segment has neighbours and each is the whole swept sphere our test intersects.
+    RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_ROUND_LINEAR_CURVE);
+    auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4,
+                                                          4 * sizeof(float), 2 * curves_.size()));
+    auto* idx = static_cast<unsigned*>(
+        rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT, sizeof(unsigned), curves_.size()));
+    for (size_t i = 0; i < curves_.size(); ++i) {
+      const Primitive& p = prims_[curves_[i]];
+      const float cp[8] = {p.p0.x, p.p0.y, p.p0.z, p.p2.x, p.p1.x, p.p1.y, p.p1.z, p.p2.y};
+      std::copy(cp, cp + 8, v + 8 * i);
+      idx[i] = unsigned(2 * i);
+    }
+    // No neighbours (flags 0): each segment keeps both end spheres.
+    auto* flags = static_cast<unsigned char*>(
+        rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_FLAGS, 0, RTC_FORMAT_UCHAR, 1, curves_.size()));
+    std::fill(flags, flags + curves_.size(), static_cast<unsigned char>(0));
+    rtcSetGeometryIntersectFilterFunction(g, cull_curve_backface);
+    rtcSetGeometryOccludedFilterFunction(g, cull_curve_backface);
+    curve_geometry_ = 2;
+    attach(g, curve_geometry_);
   }
   rtcCommitScene(scene_);
   const RTCError e = rtcGetDeviceError(device_);
@@ -121,7 +159,9 @@ bool EmbreeAccel::intersect(const Ray& ray, Hit& hit) const {
   rtcIntersect1(scene_, &ctx, &rh);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
   hit.t = rh.ray.tfar;
-  hit.prim = rh.hit.geomID == sphere_geometry_ ? spheres_[rh.hit.primID] : triangles_[rh.hit.primID];
+  hit.prim = rh.hit.geomID == user_geometry_    ? user_[rh.hit.primID]
+             : rh.hit.geomID == curve_geometry_ ? curves_[rh.hit.primID]
+                                                : triangles_[rh.hit.primID];
   return true;
 }
 

@@ -1,6 +1,8 @@
 // Ray casting through Embree 3 (Debian libembree-dev): triangles as Embree triangle geometry,
-// spheres as user geometry calling our double-precision sphere test (intersect_sphere), so
-// that both backends find the same spheres. Built only with CAUSTICA_EMBREE.
+// spheres and SDF grid voxels as user geometry calling our own tests (intersect_primitive: the
+// double-precision sphere, the SDF voxel's cubic), so that both backends find the same hits;
+// round linear curves as Embree's own curve geometry (our BVH's test is its oracle).
+// Built only with CAUSTICA_EMBREE.
 #pragma once
 #ifdef CAUSTICA_EMBREE
 #include <atomic>
@@ -25,12 +27,12 @@ class EmbreeAccel final : public Accelerator {
 
  private:
   std::vector<Primitive> prims_;
-  std::vector<uint32_t> triangles_, spheres_;  // Embree primID -> index into prims_, per geometry
-  std::vector<Primitive> sphere_prims_;        // the spheres in primID order, for the callbacks
+  std::vector<uint32_t> triangles_, user_, curves_;  // Embree primID -> index into prims_, per geometry
+  std::vector<Primitive> user_prims_;       // spheres and SDF voxels in primID order, for the callbacks
   Bounds bounds_;
   RTCDevice device_ = nullptr;
   RTCScene scene_ = nullptr;
-  unsigned sphere_geometry_ = RTC_INVALID_GEOMETRY_ID;
+  unsigned user_geometry_ = RTC_INVALID_GEOMETRY_ID, curve_geometry_ = RTC_INVALID_GEOMETRY_ID;
   std::atomic<int64_t> memory_{0};
 };
 

@@ -61,6 +61,7 @@ class Scene {
   std::vector<std::unique_ptr<Texture>> textures;  // read by the materials
   std::vector<TriangleAttributes> attributes;      // indexed by Primitive::attributes
   std::vector<std::unique_ptr<MeshAttributes>> mesh_attributes;  // pointed to by attributes
+  std::vector<std::unique_ptr<SdfGrid>> sdf_grids;  // pointed to by their voxels' primitives
   std::vector<std::string> material_names;
   std::vector<std::unique_ptr<Light>> lights;
   std::vector<ObjectInfo> objects;

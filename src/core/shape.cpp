@@ -1,4 +1,4 @@
-// Triangle and sphere geometry and intersection.
+// Triangle, sphere and SDF voxel geometry and intersection.
 #include "core/shape.h"
 #include <algorithm>
 #include <cmath>
@@ -25,9 +25,41 @@ Primitive Primitive::sphere(const Vec3& centre, float radius) {
   return p;
 }
 
+Primitive Primitive::sdf_voxel(const SdfGrid* grid, uint32_t voxel) {
+  Primitive p;
+  p.kind = ShapeKind::SdfVoxel;
+  const Bounds b = grid->voxel_bounds(voxel);
+  p.p0 = b.lo;
+  p.p1 = b.hi;
+  static_assert(sizeof(const SdfGrid*) + sizeof(uint32_t) <= sizeof(Vec3), "p2 holds the grid and the voxel");
+  std::memcpy(&p.p2, &grid, sizeof(grid));
+  std::memcpy(reinterpret_cast<char*>(&p.p2) + sizeof(grid), &voxel, sizeof(voxel));
+  return p;
+}
+
+Primitive Primitive::linear_curve(const Vec3& a, float ra, const Vec3& b, float rb, uint32_t segment, uint32_t segments) {
+  Primitive p;
+  p.kind = ShapeKind::LinearCurve;
+  p.p0 = a;
+  p.p1 = b;
+  p.p2 = Vec3(ra, rb, float(segment));
+  p.ng = Vec3(float(segments), 0.0f, 0.0f);
+  return p;
+}
+
 Bounds Primitive::bounds() const {
   Bounds b;
-  if (kind == ShapeKind::Triangle) {
+  if (kind == ShapeKind::SdfVoxel) {
+    b.extend(p0);
+    b.extend(p1);
+  } else if (kind == ShapeKind::LinearCurve) {
+    // Both end spheres, a few ulps wider (the float box around a double-precision test).
+    const Vec3 pad0 = Vec3(p2.x) + 1e-6f * (glm::abs(p0) + Vec3(p2.x)), pad1 = Vec3(p2.y) + 1e-6f * (glm::abs(p1) + Vec3(p2.y));
+    b.extend(p0 - pad0);
+    b.extend(p0 + pad0);
+    b.extend(p1 - pad1);
+    b.extend(p1 + pad1);
+  } else if (kind == ShapeKind::Triangle) {
     b.extend(p0);
     b.extend(p1);
     b.extend(p2);
@@ -39,16 +71,34 @@ Bounds Primitive::bounds() const {
 }
 
 Vec3 Primitive::centroid() const {
+  if (kind == ShapeKind::SdfVoxel || kind == ShapeKind::LinearCurve) return 0.5f * (p0 + p1);
   return kind == ShapeKind::Triangle ? (p0 + p1 + p2) / 3.0f : p0;
 }
 
 float Primitive::area() const {
+  if (kind == ShapeKind::SdfVoxel) return 0.0f;  // not known in closed form; SDF grids do not emit (as in Mitsuba)
+  if (kind == ShapeKind::LinearCurve) {
+    // The cone's side between its touching circles (the joints' spheres are shared with the
+    // neighbours; curves do not emit here, and the figure serves the object's statistics).
+    const float len = glm::length(p1 - p0);
+    return kPi * (p2.x + p2.y) * len;
+  }
   if (kind == ShapeKind::Triangle) return 0.5f * glm::length(glm::cross(p1 - p0, p2 - p0));
   return 4.0f * kPi * radius() * radius();
 }
 
 Vec3 Primitive::normal_at(const Vec3& p) const {
-  const Vec3 n = kind == ShapeKind::Triangle ? ng : glm::normalize(p - p0);
+  Vec3 n;
+  switch (kind) {
+    case ShapeKind::Triangle: n = ng; break;
+    case ShapeKind::Sphere: n = glm::normalize(p - p0); break;
+    case ShapeKind::SdfVoxel: n = sdf_grid()->normal(p, sdf_voxel()); break;
+    case ShapeKind::LinearCurve: {
+      const float s = round_cone_parameter(p, p0, p2.x, p1, p2.y);
+      n = glm::normalize(p - (p0 + s * (p1 - p0)));
+      break;
+    }
+  }
   return flip ? -n : n;
 }
 

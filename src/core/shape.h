@@ -1,9 +1,12 @@
-// Geometric primitives (triangles, spheres), their bounds and ray intersection.
+// Geometric primitives (triangles, spheres, SDF grid voxels), their bounds and ray intersection.
 #pragma once
 #include <cstdint>
+#include <cstring>
 #include <string>
 #include <vector>
+#include "core/curve.h"
 #include "core/math.h"
+#include "core/sdf_grid.h"
 #include "core/textures/texture.h"
 
 namespace caustica {
@@ -22,7 +25,7 @@ struct Bounds {
   }
 };
 
-enum class ShapeKind : uint8_t { Triangle, Sphere };
+enum class ShapeKind : uint8_t { Triangle, Sphere, SdfVoxel, LinearCurve };
 constexpr uint32_t kNoAttributes = 0xffffffffu;
 
 // Values a mesh file gives per vertex or per face besides positions, normals and UVs (PLY's
@@ -61,7 +64,10 @@ struct TriangleAttributes {
   uint32_t triangle = 0;
 };
 
-// A triangle (p0, p1, p2) or a sphere (centre p0, radius p1.x). `flip` reverses the normal.
+// A triangle (p0, p1, p2), a sphere (centre p0, radius p1.x), or a voxel of an SDF grid (its
+// world box p0 to p1; p2 holds the grid, owned by the scene, and the voxel's index), or a round
+// linear curve segment (from p0 to p1, radii p2.x and p2.y; p2.z its index in the curve file
+// and ng.x the file's segment count, for its v coordinate). `flip` reverses the normal.
 // One cache line each (the hit's surface data reads it right after the ray cast).
 struct alignas(64) Primitive {
   Vec3 p0, p1, p2;
@@ -75,7 +81,19 @@ struct alignas(64) Primitive {
 
   static Primitive triangle(const Vec3& a, const Vec3& b, const Vec3& c);
   static Primitive sphere(const Vec3& centre, float radius);
+  static Primitive sdf_voxel(const SdfGrid* grid, uint32_t voxel);
+  static Primitive linear_curve(const Vec3& a, float ra, const Vec3& b, float rb, uint32_t segment, uint32_t segments);
   float radius() const { return p1.x; }
+  const SdfGrid* sdf_grid() const {
+    const SdfGrid* g;
+    std::memcpy(&g, &p2, sizeof(g));
+    return g;
+  }
+  uint32_t sdf_voxel() const {
+    uint32_t v;
+    std::memcpy(&v, reinterpret_cast<const char*>(&p2) + sizeof(const SdfGrid*), sizeof(v));
+    return v;
+  }
   Bounds bounds() const;
   Vec3 centroid() const;
   float area() const;
@@ -127,8 +145,13 @@ bool intersect_sphere(const Ray& ray, const Vec3& centre, float radius, float tm
 
 inline bool intersect_primitive(const Ray& ray, const Primitive& p, float tmax, float& t) {
   float u, v;
-  return p.kind == ShapeKind::Triangle ? intersect_triangle(ray, p.p0, p.p1, p.p2, tmax, t, u, v)
-                                       : intersect_sphere(ray, p.p0, p.radius(), tmax, t);
+  switch (p.kind) {
+    case ShapeKind::Triangle: return intersect_triangle(ray, p.p0, p.p1, p.p2, tmax, t, u, v);
+    case ShapeKind::Sphere: return intersect_sphere(ray, p.p0, p.radius(), tmax, t);
+    case ShapeKind::SdfVoxel: return p.sdf_grid()->intersect(ray, p.sdf_voxel(), tmax, t);
+    case ShapeKind::LinearCurve: return intersect_round_cone(ray, p.p0, p.p2.x, p.p1, p.p2.y, tmax, t);
+  }
+  return false;
 }
 
 }  // namespace caustica

@@ -15,6 +15,8 @@ const std::vector<ShapePlugin>& shape_plugins() {
        {"vertices", "indices", "normals", "uvs", "file", "shape_index", "scale", "translate", "to_world", "face_normals",
         "default_material", "smooth_normals", "max_smooth_angle"},
        &Loader::read_mesh_object},
+      {"sdfgrid", {"file", "to_world", "normals"}, &Loader::read_sdfgrid},
+      {"linearcurve", {"file", "to_world"}, &Loader::read_linearcurve},
   };
   return table;
 }
@@ -96,7 +98,10 @@ void Loader::add_object(std::vector<Primitive> shapes, uint32_t mat, const json&
   } else {
     info.centre = b.centre();
     for (const Primitive& s : shapes) {
-      for (const Vec3& v : {s.p0, s.p1, s.p2}) info.radius = std::max(info.radius, glm::length(v - info.centre));
+      const Bounds sb = s.bounds();  // an SDF voxel's box (its p2 is not a point)
+      const Vec3 corners[3] = {s.kind == ShapeKind::SdfVoxel ? sb.lo : s.p0, s.kind == ShapeKind::SdfVoxel ? sb.hi : s.p1,
+                               s.kind == ShapeKind::SdfVoxel ? sb.hi : s.p2};
+      for (const Vec3& v : corners) info.radius = std::max(info.radius, glm::length(v - info.centre));
     }
   }
   for (Primitive& s : shapes) {

@@ -20,7 +20,7 @@ T read_at(const std::string& b, size_t offset) {
 }
 }  // namespace
 
-VolumeGrid parse_vol(const std::string& b, const std::string& name) {
+VolumeGrid parse_vol(const std::string& b, const std::string& name, bool signed_values) {
   auto fail = [&](const std::string& m) -> void { throw InputError(name + ": " + m); };
   if (b.size() < 4 || b.compare(0, 3, "VOL") != 0) fail("not a .vol grid file (it does not start with \"VOL\")");
   if (uint8_t(b[3]) != 3) fail("version " + std::to_string(int(uint8_t(b[3]))) + " of the .vol format; version 3 is read");
@@ -58,24 +58,25 @@ VolumeGrid parse_vol(const std::string& b, const std::string& name) {
   std::memcpy(g.values.data(), b.data() + kHeader, size_t(values) * 4);
   for (size_t i = 0; i < g.values.size(); ++i) {
     const float v = g.values[i];
-    if (!std::isfinite(v) || v < 0.0f) {
+    if (!std::isfinite(v) || (v < 0.0f && !signed_values)) {
       const size_t voxel = i / size_t(g.channels);
       const size_t x = voxel % size_t(g.nx), y = voxel / size_t(g.nx) % size_t(g.ny), z = voxel / size_t(g.nx) / size_t(g.ny);
       std::ostringstream m;
-      m << "voxel (" << x << ", " << y << ", " << z << ") holds " << v << "; values must be finite and not negative";
+      m << "voxel (" << x << ", " << y << ", " << z << ") holds " << v << "; values must be finite"
+        << (signed_values ? "" : " and not negative");
       fail(m.str());
     }
   }
   return g;
 }
 
-VolumeGrid read_vol_file(const std::string& path) {
+VolumeGrid read_vol_file(const std::string& path, bool signed_values) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path + ": cannot open the grid file");
   std::ostringstream ss;
   ss << in.rdbuf();
   if (in.bad()) throw InputError(path + ": error while reading the grid file");
-  return parse_vol(ss.str(), path);
+  return parse_vol(ss.str(), path, signed_values);
 }
 
 VolumeGrid read_grid_file(const std::string& path, const std::string& grid_name) {

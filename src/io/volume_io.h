@@ -8,12 +8,13 @@
 
 namespace caustica {
 
-VolumeGrid read_vol_file(const std::string& path);
+// `signed_values`: negative values are allowed (an SDF grid's); otherwise refused (densities).
+VolumeGrid read_vol_file(const std::string& path, bool signed_values = false);
 // A grid file of either kind, told by its first bytes: an OpenVDB file (io/vdb_io.h; its grid
 // `grid_name`, empty for the default) or a .vol.
 VolumeGrid read_grid_file(const std::string& path, const std::string& grid_name);
 // The same from bytes in memory (`name` for messages), for the fuzz tests.
-VolumeGrid parse_vol(const std::string& bytes, const std::string& name);
+VolumeGrid parse_vol(const std::string& bytes, const std::string& name, bool signed_values = false);
 // A .vol file's bytes for a grid (the tests' and scripts' writer).
 std::string format_vol(const VolumeGrid& grid);
 

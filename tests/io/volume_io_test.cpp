@@ -1,6 +1,7 @@
 // Grid files (Mitsuba's .vol, OpenVDB's .vdb): read back as written; every malformed file an error naming the
 // file and what is wrong; random corruptions never crash the reader.
 #include <catch2/catch.hpp>
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <iterator>
@@ -92,8 +93,11 @@ TEST_CASE("vol files: corrupted and truncated files never crash the reader (fuzz
     for (int e = 0; e < edits; ++e) b[size_t(rng.next_float() * float(b.size())) % b.size()] = char(rng.next_u32() & 0xff);
     if (rng.next_float() < 0.3f) b.resize(size_t(rng.next_float() * float(b.size())));
     try {
-      const VolumeGrid g = parse_vol(b, "fuzz.vol");
+      // Half as densities, half as an SDF grid's signed values.
+      const bool signed_values = i % 2 == 1;
+      const VolumeGrid g = parse_vol(b, "fuzz.vol", signed_values);
       REQUIRE(g.values.size() == size_t(g.nx) * size_t(g.ny) * size_t(g.nz) * size_t(g.channels));
+      for (float v : g.values) REQUIRE((std::isfinite(v) && (signed_values || v >= 0.0f)));
     } catch (const InputError&) {
       ++errors;
     }

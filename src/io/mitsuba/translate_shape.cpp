@@ -8,8 +8,8 @@ namespace caustica::mitsuba_translation {
 namespace fs = std::filesystem;
 
 namespace {
-const std::set<std::string> kShapes = {"obj",  "ply",    "serialized", "rectangle", "cube",
-                                       "disk", "sphere", "cylinder",   "shapegroup", "instance"};
+const std::set<std::string> kShapes = {"obj",      "ply",        "serialized", "rectangle", "cube",   "disk",
+                                       "sphere",   "cylinder",   "shapegroup", "instance",  "sdfgrid", "linearcurve"};
 }  // namespace
 
 void Translator::shape(const XmlObject& o, const glm::dmat4& parent) {
@@ -124,6 +124,22 @@ void Translator::shape(const XmlObject& o, const glm::dmat4& parent) {
     obj["type"] = "sphere";
     obj["center"] = vec(glm::dvec3(m * glm::dvec4(c, 1.0)));
     obj["radius"] = r * s;
+  } else if (o.type == "sdfgrid" || o.type == "linearcurve") {
+    // A grid over the unit cube, or a curve file's control points, under to_world (and the
+    // instances' transforms above it).
+    obj["type"] = o.type;
+    const XmlProperty* f = props.get("filename");
+    if (!f) throw InputError(o.where + ": missing <string name=\"filename\">");
+    obj["file"] = resolve(o, *f);
+    note(p + "/file", f->where);
+    if (const XmlProperty* n = o.type == "sdfgrid" ? props.get("normals") : nullptr) {
+      obj["normals"] = string(*n);
+      note(p + "/normals", n->where);
+    }
+    if (m != glm::dmat4(1.0)) {
+      obj["to_world"] = rows(m);
+      if (const XmlProperty* t = o.prop("to_world")) note(p + "/to_world", t->where);
+    }
   } else {
     obj["type"] = "mesh";
     glm::dmat4 local(1.0);
