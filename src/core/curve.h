@@ -16,3 +16,20 @@ bool intersect_round_cone(const Ray& ray, const Vec3& a, float ra, const Vec3& b
 float round_cone_parameter(const Vec3& p, const Vec3& a, float ra, const Vec3& b, float rb);
 
 }  // namespace caustica
+
+namespace caustica {
+
+// Round cubic B-spline curves (Mitsuba 3's `bsplinecurve`, Embree's
+// RTC_GEOMETRY_TYPE_ROUND_BSPLINE_CURVE): a segment of four control points cp (x, y, z, radius)
+// is the envelope of the spheres centred on the uniform cubic B-spline c(u) with radius r(u)
+// (the same spline of the radii), u in [0, 1]; as in Embree, open at its ends (a curve's segments
+// join smoothly) and culled from inside. The test starts Newton's method on (t, u) from the hits
+// of 16 round linear pieces along the segment, so a ray grazing the sweep within the pieces'
+// sagitta of its silhouette may miss it.
+glm::vec4 bspline_point(const glm::vec4 cp[4], float u);    // (c(u), r(u))
+glm::vec4 bspline_tangent(const glm::vec4 cp[4], float u);  // (c'(u), r'(u))
+bool intersect_bspline(const Ray& ray, const glm::vec4 cp[4], float tmax, float& t, float* u_hit = nullptr);
+// The u of the sphere on whose envelope a point of the surface lies.
+float bspline_parameter(const Vec3& p, const glm::vec4 cp[4]);
+
+}  // namespace caustica

@@ -2,6 +2,7 @@
 #ifdef CAUSTICA_EMBREE
 #include "core/embree_accel.h"
 #include <algorithm>
+#include <functional>
 #include <cmath>
 #include "core/error.h"
 
@@ -85,7 +86,12 @@ EmbreeAccel::EmbreeAccel(std::vector<Primitive> prims) : prims_(std::move(prims)
     rtcReleaseGeometry(g);
   };
   for (uint32_t i = 0; i < prims_.size(); ++i) {
-    (prims_[i].kind == ShapeKind::Triangle ? triangles_ : prims_[i].kind == ShapeKind::LinearCurve ? curves_ : user_).push_back(i);
+    switch (prims_[i].kind) {
+      case ShapeKind::Triangle: triangles_.push_back(i); break;
+      case ShapeKind::LinearCurve: curves_.push_back(i); break;
+      case ShapeKind::BsplineCurve: splines_.push_back(i); break;
+      default: user_.push_back(i); break;
+    }
     bounds_.extend(prims_[i].bounds());
   }
   if (!triangles_.empty()) {
@@ -116,28 +122,43 @@ EmbreeAccel::EmbreeAccel(std::vector<Primitive> prims) : prims_(std::move(prims)
     user_geometry_ = 1;
     attach(g, user_geometry_);
   }
-  if (!curves_.empty()) {
-    // Embree's round linear curves: each segment its own two control points (x, y, z, radius),
-    // so that no segment has neighbours and each is the whole swept sphere our test intersects.
-    RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_ROUND_LINEAR_CURVE);
+  // Embree's round curves: each segment its own control points (x, y, z, radius), so that no
+  // segment has neighbours and each is the whole sweep our BVH's test intersects; backfaces culled.
+  auto curve_geometry = [&](RTCGeometryType type, const std::vector<uint32_t>& ids, size_t per_segment,
+                            const std::function<void(const Primitive&, float*)>& write) {
+    RTCGeometry g = rtcNewGeometry(device_, type);
     auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4,
-                                                          4 * sizeof(float), 2 * curves_.size()));
+                                                          4 * sizeof(float), per_segment * ids.size()));
     auto* idx = static_cast<unsigned*>(
-        rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT, sizeof(unsigned), curves_.size()));
-    for (size_t i = 0; i < curves_.size(); ++i) {
-      const Primitive& p = prims_[curves_[i]];
-      const float cp[8] = {p.p0.x, p.p0.y, p.p0.z, p.p2.x, p.p1.x, p.p1.y, p.p1.z, p.p2.y};
-      std::copy(cp, cp + 8, v + 8 * i);
-      idx[i] = unsigned(2 * i);
+        rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT, sizeof(unsigned), ids.size()));
+    for (size_t i = 0; i < ids.size(); ++i) {
+      write(prims_[ids[i]], v + 4 * per_segment * i);
+      idx[i] = unsigned(per_segment * i);
     }
+    rtcSetGeometryIntersectFilterFunction(g, cull_curve_backface);
+    rtcSetGeometryOccludedFilterFunction(g, cull_curve_backface);
+    return g;
+  };
+  if (!curves_.empty()) {
+    RTCGeometry g = curve_geometry(RTC_GEOMETRY_TYPE_ROUND_LINEAR_CURVE, curves_, 2, [](const Primitive& p, float* v) {
+      const float cp[8] = {p.p0.x, p.p0.y, p.p0.z, p.p2.x, p.p1.x, p.p1.y, p.p1.z, p.p2.y};
+      std::copy(cp, cp + 8, v);
+    });
     // No neighbours (flags 0): each segment keeps both end spheres.
     auto* flags = static_cast<unsigned char*>(
         rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_FLAGS, 0, RTC_FORMAT_UCHAR, 1, curves_.size()));
     std::fill(flags, flags + curves_.size(), static_cast<unsigned char>(0));
-    rtcSetGeometryIntersectFilterFunction(g, cull_curve_backface);
-    rtcSetGeometryOccludedFilterFunction(g, cull_curve_backface);
     curve_geometry_ = 2;
     attach(g, curve_geometry_);
+  }
+  if (!splines_.empty()) {
+    RTCGeometry g = curve_geometry(RTC_GEOMETRY_TYPE_ROUND_BSPLINE_CURVE, splines_, 4, [](const Primitive& p, float* v) {
+      const glm::vec4* cp = p.bspline_points();
+      for (int k = 0; k < 4; ++k)
+        for (int c = 0; c < 4; ++c) v[4 * k + c] = cp[k][c];
+    });
+    spline_geometry_ = 3;
+    attach(g, spline_geometry_);
   }
   rtcCommitScene(scene_);
   const RTCError e = rtcGetDeviceError(device_);
@@ -161,6 +182,7 @@ bool EmbreeAccel::intersect(const Ray& ray, Hit& hit) const {
   hit.t = rh.ray.tfar;
   hit.prim = rh.hit.geomID == user_geometry_    ? user_[rh.hit.primID]
              : rh.hit.geomID == curve_geometry_ ? curves_[rh.hit.primID]
+             : rh.hit.geomID == spline_geometry_ ? splines_[rh.hit.primID]
                                                 : triangles_[rh.hit.primID];
   return true;
 }

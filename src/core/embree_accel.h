@@ -27,12 +27,13 @@ class EmbreeAccel final : public Accelerator {
 
  private:
   std::vector<Primitive> prims_;
-  std::vector<uint32_t> triangles_, user_, curves_;  // Embree primID -> index into prims_, per geometry
+  std::vector<uint32_t> triangles_, user_, curves_, splines_;  // Embree primID -> index into prims_, per geometry
   std::vector<Primitive> user_prims_;       // spheres and SDF voxels in primID order, for the callbacks
   Bounds bounds_;
   RTCDevice device_ = nullptr;
   RTCScene scene_ = nullptr;
-  unsigned user_geometry_ = RTC_INVALID_GEOMETRY_ID, curve_geometry_ = RTC_INVALID_GEOMETRY_ID;
+  unsigned user_geometry_ = RTC_INVALID_GEOMETRY_ID, curve_geometry_ = RTC_INVALID_GEOMETRY_ID,
+           spline_geometry_ = RTC_INVALID_GEOMETRY_ID;
   std::atomic<int64_t> memory_{0};
 };
 

@@ -146,15 +146,24 @@ bool Scene::intersect_opaque(const Ray& ray, SurfaceHit& hit) const {
     tangent = Vec3(-d.y, d.x, 0.0f);
     dpdu = (2.0f * kPi * r) * tangent;
     if (sin_theta > 1e-6f) dpdv = (kPi * r) * Vec3(d.z * d.x / sin_theta, d.z * d.y / sin_theta, -sin_theta);
-  } else if (prim.kind == ShapeKind::LinearCurve) {
+  } else if (prim.kind == ShapeKind::LinearCurve || prim.kind == ShapeKind::BsplineCurve) {
     // Mitsuba's parameterisation: u around the axis (from a frame about it), v along the
     // file's segments; dp/dv along the axis orients anisotropic BSDFs along the fibre.
-    const Vec3 axis = prim.p1 - prim.p0;
-    const float s = round_cone_parameter(hit.p, prim.p0, prim.p2.x, prim.p1, prim.p2.y);
-    const Vec3 radial = hit.p - (prim.p0 + s * axis);
+    Vec3 axis, centre;
+    float s;
+    if (prim.kind == ShapeKind::LinearCurve) {
+      axis = prim.p1 - prim.p0;
+      s = round_cone_parameter(hit.p, prim.p0, prim.p2.x, prim.p1, prim.p2.y);
+      centre = prim.p0 + s * axis;
+    } else {
+      s = bspline_parameter(hit.p, prim.bspline_points());
+      axis = Vec3(bspline_tangent(prim.bspline_points(), s));
+      centre = Vec3(bspline_point(prim.bspline_points(), s));
+    }
+    const Vec3 radial = hit.p - centre;
     const Frame around(glm::normalize(axis));
     const float u = std::atan2(glm::dot(radial, around.t), glm::dot(radial, around.s)) * (0.5f * kInvPi);
-    hit.sp.uv = Vec2(u < 0.0f ? u + 1.0f : u, (s + prim.p2.z) / std::max(prim.ng.x, 1.0f));
+    hit.sp.uv = Vec2(u < 0.0f ? u + 1.0f : u, (s + float(prim.curve_segment())) / std::max(prim.ng.x, 1.0f));
     dpdv = axis * std::max(prim.ng.x, 1.0f);
     dpdu = (2.0f * kPi) * glm::cross(around.n, radial);
     tangent = dpdu;

@@ -62,6 +62,8 @@ class Scene {
   std::vector<TriangleAttributes> attributes;      // indexed by Primitive::attributes
   std::vector<std::unique_ptr<MeshAttributes>> mesh_attributes;  // pointed to by attributes
   std::vector<std::unique_ptr<SdfGrid>> sdf_grids;  // pointed to by their voxels' primitives
+  // B-spline curves' control points, four for each segment, pointed to by the segments' primitives.
+  std::vector<std::unique_ptr<std::vector<glm::vec4>>> curve_points;
   std::vector<std::string> material_names;
   std::vector<std::unique_ptr<Light>> lights;
   std::vector<ObjectInfo> objects;

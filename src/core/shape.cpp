@@ -31,9 +31,25 @@ Primitive Primitive::sdf_voxel(const SdfGrid* grid, uint32_t voxel) {
   const Bounds b = grid->voxel_bounds(voxel);
   p.p0 = b.lo;
   p.p1 = b.hi;
-  static_assert(sizeof(const SdfGrid*) + sizeof(uint32_t) <= sizeof(Vec3), "p2 holds the grid and the voxel");
-  std::memcpy(&p.p2, &grid, sizeof(grid));
-  std::memcpy(reinterpret_cast<char*>(&p.p2) + sizeof(grid), &voxel, sizeof(voxel));
+  p.set_p2(grid, voxel);
+  return p;
+}
+
+Primitive Primitive::bspline_curve(const glm::vec4* cp, uint32_t segment, uint32_t segments) {
+  Primitive p;
+  p.kind = ShapeKind::BsplineCurve;
+  // The spline lies in its control points' hull and its radius below their largest.
+  Bounds b;
+  float r = 0.0f;
+  for (int i = 0; i < 4; ++i) {
+    b.extend(Vec3(cp[i]));
+    r = std::max(r, cp[i].w);
+  }
+  const Vec3 pad = Vec3(r) + 1e-6f * (glm::max(glm::abs(b.lo), glm::abs(b.hi)) + Vec3(r));
+  p.p0 = b.lo - pad;
+  p.p1 = b.hi + pad;
+  p.set_p2(cp, segment);
+  p.ng = Vec3(float(segments), 0.0f, 0.0f);
   return p;
 }
 
@@ -49,7 +65,7 @@ Primitive Primitive::linear_curve(const Vec3& a, float ra, const Vec3& b, float 
 
 Bounds Primitive::bounds() const {
   Bounds b;
-  if (kind == ShapeKind::SdfVoxel) {
+  if (kind == ShapeKind::SdfVoxel || kind == ShapeKind::BsplineCurve) {
     b.extend(p0);
     b.extend(p1);
   } else if (kind == ShapeKind::LinearCurve) {
@@ -71,12 +87,19 @@ Bounds Primitive::bounds() const {
 }
 
 Vec3 Primitive::centroid() const {
-  if (kind == ShapeKind::SdfVoxel || kind == ShapeKind::LinearCurve) return 0.5f * (p0 + p1);
+  if (kind != ShapeKind::Triangle && kind != ShapeKind::Sphere) return 0.5f * (p0 + p1);
   return kind == ShapeKind::Triangle ? (p0 + p1 + p2) / 3.0f : p0;
 }
 
 float Primitive::area() const {
   if (kind == ShapeKind::SdfVoxel) return 0.0f;  // not known in closed form; SDF grids do not emit (as in Mitsuba)
+  if (kind == ShapeKind::BsplineCurve) {
+    // Approximately: the mean radius over the control polygon's length (for statistics only).
+    const glm::vec4* cp = bspline_points();
+    float len = 0.0f;
+    for (int i = 0; i < 3; ++i) len += glm::length(Vec3(cp[i + 1]) - Vec3(cp[i]));
+    return kPi * (cp[1].w + cp[2].w) * len / 3.0f;
+  }
   if (kind == ShapeKind::LinearCurve) {
     // The cone's side between its touching circles (the joints' spheres are shared with the
     // neighbours; curves do not emit here, and the figure serves the object's statistics).
@@ -96,6 +119,11 @@ Vec3 Primitive::normal_at(const Vec3& p) const {
     case ShapeKind::LinearCurve: {
       const float s = round_cone_parameter(p, p0, p2.x, p1, p2.y);
       n = glm::normalize(p - (p0 + s * (p1 - p0)));
+      break;
+    }
+    case ShapeKind::BsplineCurve: {
+      const glm::vec4* cp = bspline_points();
+      n = glm::normalize(p - Vec3(bspline_point(cp, bspline_parameter(p, cp))));
       break;
     }
   }

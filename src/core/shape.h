@@ -25,7 +25,7 @@ struct Bounds {
   }
 };
 
-enum class ShapeKind : uint8_t { Triangle, Sphere, SdfVoxel, LinearCurve };
+enum class ShapeKind : uint8_t { Triangle, Sphere, SdfVoxel, LinearCurve, BsplineCurve };
 constexpr uint32_t kNoAttributes = 0xffffffffu;
 
 // Values a mesh file gives per vertex or per face besides positions, normals and UVs (PLY's
@@ -67,7 +67,9 @@ struct TriangleAttributes {
 // A triangle (p0, p1, p2), a sphere (centre p0, radius p1.x), or a voxel of an SDF grid (its
 // world box p0 to p1; p2 holds the grid, owned by the scene, and the voxel's index), or a round
 // linear curve segment (from p0 to p1, radii p2.x and p2.y; p2.z its index in the curve file
-// and ng.x the file's segment count, for its v coordinate). `flip` reverses the normal.
+// and ng.x the file's segment count, for its v coordinate), or a round B-spline curve segment
+// (its box p0 to p1; p2 holds its four control points, owned by the scene, and its index in the
+// file; ng.x the file's segment count). `flip` reverses the normal.
 // One cache line each (the hit's surface data reads it right after the ray cast).
 struct alignas(64) Primitive {
   Vec3 p0, p1, p2;
@@ -83,15 +85,27 @@ struct alignas(64) Primitive {
   static Primitive sphere(const Vec3& centre, float radius);
   static Primitive sdf_voxel(const SdfGrid* grid, uint32_t voxel);
   static Primitive linear_curve(const Vec3& a, float ra, const Vec3& b, float rb, uint32_t segment, uint32_t segments);
+  static Primitive bspline_curve(const glm::vec4* control_points, uint32_t segment, uint32_t segments);
   float radius() const { return p1.x; }
-  const SdfGrid* sdf_grid() const {
-    const SdfGrid* g;
-    std::memcpy(&g, &p2, sizeof(g));
-    return g;
+  const SdfGrid* sdf_grid() const { return static_cast<const SdfGrid*>(p2_pointer()); }
+  uint32_t sdf_voxel() const { return p2_index(); }
+  const glm::vec4* bspline_points() const { return static_cast<const glm::vec4*>(p2_pointer()); }
+  uint32_t curve_segment() const { return kind == ShapeKind::LinearCurve ? uint32_t(p2.z) : p2_index(); }
+  uint32_t curve_segments() const { return uint32_t(ng.x); }
+  // What p2 holds for an SDF voxel and a B-spline segment: a pointer and an index.
+  void set_p2(const void* pointer, uint32_t index) {
+    static_assert(sizeof(const void*) + sizeof(uint32_t) <= sizeof(Vec3), "p2 holds a pointer and an index");
+    std::memcpy(&p2, &pointer, sizeof(pointer));
+    std::memcpy(reinterpret_cast<char*>(&p2) + sizeof(pointer), &index, sizeof(index));
   }
-  uint32_t sdf_voxel() const {
+  const void* p2_pointer() const {
+    const void* p;
+    std::memcpy(&p, &p2, sizeof(p));
+    return p;
+  }
+  uint32_t p2_index() const {
     uint32_t v;
-    std::memcpy(&v, reinterpret_cast<const char*>(&p2) + sizeof(const SdfGrid*), sizeof(v));
+    std::memcpy(&v, reinterpret_cast<const char*>(&p2) + sizeof(const void*), sizeof(v));
     return v;
   }
   Bounds bounds() const;
@@ -150,6 +164,7 @@ inline bool intersect_primitive(const Ray& ray, const Primitive& p, float tmax, 
     case ShapeKind::Sphere: return intersect_sphere(ray, p.p0, p.radius(), tmax, t);
     case ShapeKind::SdfVoxel: return p.sdf_grid()->intersect(ray, p.sdf_voxel(), tmax, t);
     case ShapeKind::LinearCurve: return intersect_round_cone(ray, p.p0, p.p2.x, p.p1, p.p2.y, tmax, t);
+    case ShapeKind::BsplineCurve: return intersect_bspline(ray, p.bspline_points(), tmax, t);
   }
   return false;
 }

@@ -69,6 +69,8 @@ struct Loader {
   bool read_mesh_object(const json& j, const std::string& p, std::vector<Primitive>& shapes);
   bool read_sdfgrid(const json& j, const std::string& p, std::vector<Primitive>& shapes);
   bool read_linearcurve(const json& j, const std::string& p, std::vector<Primitive>& shapes);
+  bool read_bsplinecurve(const json& j, const std::string& p, std::vector<Primitive>& shapes);
+  void read_curves(const json& j, const std::string& p, std::vector<Primitive>& shapes, bool bspline);
 
   // Shapes of one material become one object (and one area light when the material emits).
   void add_object(std::vector<Primitive> shapes, uint32_t mat, const json& j, const std::string& p);

@@ -17,6 +17,7 @@ const std::vector<ShapePlugin>& shape_plugins() {
        &Loader::read_mesh_object},
       {"sdfgrid", {"file", "to_world", "normals"}, &Loader::read_sdfgrid},
       {"linearcurve", {"file", "to_world"}, &Loader::read_linearcurve},
+      {"bsplinecurve", {"file", "to_world"}, &Loader::read_bsplinecurve},
   };
   return table;
 }

@@ -54,16 +54,16 @@ TEST_CASE("cli: a Mitsuba scene renders with -D parameters, and a bad -D is an e
 
 TEST_CASE("cli: an unsupported plugin fails naming the line, and --ignore-unsupported skips it", "[app][mitsuba]") {
   test::TempDir dir;
-  dir.write("scene.xml", scene_with(R"(<shape type="bsplinecurve"/>)"));
+  dir.write("scene.xml", scene_with(R"(<shape type="ellipsoids"/>)"));
   const test::RunResult r = test::run_caustica("render scene.xml -D spp=1 -o out.exr", dir);
   CHECK(r.exit_code == 1);
-  CHECK(r.err.find("scene.xml:16:4: <shape type=\"bsplinecurve\">: unsupported shape plugin \"bsplinecurve\"") !=
+  CHECK(r.err.find("scene.xml:16:4: <shape type=\"ellipsoids\">: unsupported shape plugin \"ellipsoids\"") !=
         std::string::npos);
   CHECK_FALSE(std::filesystem::exists(dir.file("out.exr")));
   const test::RunResult ok = test::run_caustica("render scene.xml -D spp=1 --ignore-unsupported -o out.exr", dir);
   INFO(ok.err);
   CHECK(ok.exit_code == 0);
-  CHECK(ok.err.find("warning: scene.xml:16:4: <shape type=\"bsplinecurve\">: unsupported shape plugin") != std::string::npos);
+  CHECK(ok.err.find("warning: scene.xml:16:4: <shape type=\"ellipsoids\">: unsupported shape plugin") != std::string::npos);
   CHECK(ok.err.find(": skipped") != std::string::npos);
   CHECK(std::filesystem::exists(dir.file("out.exr")));
 }

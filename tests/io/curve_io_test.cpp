@@ -76,3 +76,30 @@ TEST_CASE("linearcurve: Mitsuba's linearcurve in an instance: positions by both 
   const std::string bad = dir.write("bad.xml", R"(<scene version="3.0.0"><shape type="linearcurve"><string name="filename" value="bad.txt"/></shape></scene>)");
   CHECK_THAT(test::error_of([&] { load_scene(bad); }), Catch::Contains("bad.txt:4") && Catch::Contains("at least 2"));
 }
+
+TEST_CASE("bsplinecurve: Mitsuba's bsplinecurve: n - 3 segments a curve, hit on the spline's sweep", "[curve][io][mitsuba]") {
+  test::TempDir dir;
+  // A straight spline along x: control points at x = -1, 0, 1, 2, 3 make two segments covering
+  // x in [0, 2] (a uniform cubic B-spline of equally spaced points is the line between the
+  // second and the second to last), radius 0.2.
+  dir.write("line.txt", "-1 0 0 0.2\n0 0 0 0.2\n1 0 0 0.2\n2 0 0 0.2\n3 0 0 0.2\n");
+  const std::string xml = dir.write("scene.xml", R"(<scene version="3.0.0">
+  <shape type="bsplinecurve"><string name="filename" value="line.txt"/>
+    <transform name="to_world"><translate z="1"/></transform></shape>
+</scene>)");
+  const LoadedScene loaded = load_scene(xml);
+  const Scene& scene = *loaded.scene;
+  REQUIRE(scene.curve_points.size() == 1);
+  CHECK(scene.curve_points[0]->size() == 8);  // two segments of four points
+  SurfaceHit hit;
+  REQUIRE(scene.intersect(Ray{Vec3(1.5f, 5.0f, 1.0f), Vec3(0, -1, 0), kInfinity}, hit));
+  CHECK(hit.t == Approx(4.8f).margin(1e-4));
+  CHECK(hit.n.y == Approx(1.0f).margin(1e-4));
+  CHECK(hit.sp.uv.y == Approx((0.5f + 1.0f) / 2.0f).margin(1e-3));  // half way along segment 1 of 2
+  // Open at the ends: past x = 2 (and before 0) nothing, also along the axis into its end.
+  CHECK_FALSE(scene.intersect(Ray{Vec3(2.1f, 5.0f, 1.0f), Vec3(0, -1, 0), kInfinity}, hit));
+  // A curve of 3 points is too short for a cubic segment.
+  dir.write("short.txt", "0 0 0 0.1\n1 0 0 0.1\n2 0 0 0.1\n");
+  const std::string bad = dir.write("bad.xml", R"(<scene version="3.0.0"><shape type="bsplinecurve"><string name="filename" value="short.txt"/></shape></scene>)");
+  CHECK_THAT(test::error_of([&] { load_scene(bad); }), Catch::Contains("short.txt:1") && Catch::Contains("at least 4"));
+}

@@ -9,7 +9,7 @@ namespace fs = std::filesystem;
 
 namespace {
 const std::set<std::string> kShapes = {"obj",      "ply",        "serialized", "rectangle", "cube",   "disk",
-                                       "sphere",   "cylinder",   "shapegroup", "instance",  "sdfgrid", "linearcurve"};
+                                       "sphere",   "cylinder",   "shapegroup", "instance",  "sdfgrid", "linearcurve", "bsplinecurve"};
 }  // namespace
 
 void Translator::shape(const XmlObject& o, const glm::dmat4& parent) {
@@ -124,7 +124,7 @@ void Translator::shape(const XmlObject& o, const glm::dmat4& parent) {
     obj["type"] = "sphere";
     obj["center"] = vec(glm::dvec3(m * glm::dvec4(c, 1.0)));
     obj["radius"] = r * s;
-  } else if (o.type == "sdfgrid" || o.type == "linearcurve") {
+  } else if (o.type == "sdfgrid" || o.type == "linearcurve" || o.type == "bsplinecurve") {
     // A grid over the unit cube, or a curve file's control points, under to_world (and the
     // instances' transforms above it).
     obj["type"] = o.type;
