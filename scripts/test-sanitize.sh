@@ -8,6 +8,8 @@
 # .vdb tests and their fuzz cases; the sanitized suite checks the error such a build gives. The
 # Python module is left out too (CAUSTICA_PYTHON=OFF): an ASan library cannot be loaded into an
 # interpreter that was not started with it, and the module only converts what the suite tests.
+# Statistical render comparisons that would take minutes under ASan (tests/support/run.h's
+# kSanitized) render a little and check what a sanitizer checks; the README's suite checks their figures.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh chromium

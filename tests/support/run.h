@@ -40,6 +40,10 @@ constexpr bool kAddressSpaceLimits = true;
 #else
 constexpr bool kAddressSpaceLimits = true;
 #endif
+// Built with AddressSanitizer, whose runs are several times slower: the statistical render
+// comparisons then render a little and check what a sanitizer checks (the Release suite holds
+// them to their figures).
+constexpr bool kSanitized = !kAddressSpaceLimits;
 inline std::string address_space_limit(size_t kib) { return "ulimit -v " + std::to_string(kib) + " && "; }
 
 // A 16x16 scene with a floor and a small area light, for command-line tests.
