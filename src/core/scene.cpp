@@ -127,7 +127,9 @@ bool Scene::intersect_opaque(const Ray& ray, SurfaceHit& hit) const {
     // Project back onto the sphere: removes the error of the ray's parametric point.
     hit.p = prim.p0 + prim.radius() * glm::normalize(hit.p - prim.p0);
   }
-  hit.n = prim.normal_at(hit.p);
+  const bool curve = prim.kind == ShapeKind::LinearCurve || prim.kind == ShapeKind::BsplineCurve;
+  const Primitive::AxisPoint axis_point = curve ? prim.curve_axis_point(hit.p) : Primitive::AxisPoint{};
+  hit.n = curve ? prim.curve_normal(hit.p, axis_point) : prim.normal_at(hit.p);
   hit.material = materials[prim.material].get();
   hit.light = prim.light;
   hit.media = prim.media ? &interfaces[prim.media - 1u] : nullptr;
@@ -146,30 +148,20 @@ bool Scene::intersect_opaque(const Ray& ray, SurfaceHit& hit) const {
     tangent = Vec3(-d.y, d.x, 0.0f);
     dpdu = (2.0f * kPi * r) * tangent;
     if (sin_theta > 1e-6f) dpdv = (kPi * r) * Vec3(d.z * d.x / sin_theta, d.z * d.y / sin_theta, -sin_theta);
-  } else if (prim.kind == ShapeKind::LinearCurve || prim.kind == ShapeKind::BsplineCurve) {
+  } else if (curve) {
     // Mitsuba's parameterisation: u around the axis (from a frame about it), v along the
     // file's segments; dp/dv along the axis orients anisotropic BSDFs along the fibre.
-    Vec3 axis, centre;
-    float s;
-    if (prim.kind == ShapeKind::LinearCurve) {
-      axis = prim.p1 - prim.p0;
-      s = round_cone_parameter(hit.p, prim.p0, prim.p2.x, prim.p1, prim.p2.y);
-      centre = prim.p0 + s * axis;
-    } else {
-      s = bspline_parameter(hit.p, prim.bspline_points());
-      axis = Vec3(bspline_tangent(prim.bspline_points(), s));
-      centre = Vec3(bspline_point(prim.bspline_points(), s));
-    }
-    const Vec3 radial = hit.p - centre;
-    const Frame around(glm::normalize(axis));
+    const Vec3 radial = hit.p - axis_point.centre;
+    const Frame around(glm::normalize(axis_point.axis));
     const float u = std::atan2(glm::dot(radial, around.t), glm::dot(radial, around.s)) * (0.5f * kInvPi);
-    hit.sp.uv = Vec2(u < 0.0f ? u + 1.0f : u, (s + float(prim.curve_segment())) / std::max(prim.ng.x, 1.0f));
-    dpdv = axis * std::max(prim.ng.x, 1.0f);
+    const float segments = float(prim.curve_segments());
+    hit.sp.uv = Vec2(u < 0.0f ? u + 1.0f : u, (axis_point.s + float(prim.curve_segment())) / segments);
+    dpdv = axis_point.axis * segments;
     dpdu = (2.0f * kPi) * glm::cross(around.n, radial);
     tangent = dpdu;
   } else if (prim.kind == ShapeKind::SdfVoxel) {
     // No UVs (as in Mitsuba); the grid's shading normal (smooth or the interpolant's own).
-    const Vec3 n = prim.sdf_grid()->shading_normal(hit.p, prim.sdf_voxel());
+    const Vec3 n = prim.sdf_grid()->shading_normal(hit.p, prim.sdf_voxel(), prim.flip ? -hit.n : hit.n);
     ns = prim.flip ? -n : n;
   } else if (prim.attributes != kNoAttributes) {
     const TriangleAttributes& a = attributes[prim.attributes];

@@ -216,8 +216,8 @@ Vec3 SdfGrid::point_gradient(int x, int y, int z) const {
   return g;
 }
 
-Vec3 SdfGrid::shading_normal(const Vec3& p, uint32_t voxel) const {
-  if (normals_ == Normals::Analytic) return normal(p, voxel);
+Vec3 SdfGrid::shading_normal(const Vec3& p, uint32_t voxel, const Vec3& geometric) const {
+  if (normals_ == Normals::Analytic) return geometric;
   const Vec3 q = glm::clamp(to_voxel(p, voxel), 0.0f, 1.0f);
   const int x = int(voxel % uint32_t(n_[0])), y = int(voxel / uint32_t(n_[0]) % uint32_t(n_[1]));
   const int z = int(voxel / uint32_t(n_[0]) / uint32_t(n_[1]));
@@ -228,7 +228,7 @@ Vec3 SdfGrid::shading_normal(const Vec3& p, uint32_t voxel) const {
   }
   const Vec3 n = world_normal(g);
   // Smooth normals bend the geometric one, never turn it over.
-  return glm::dot(n, normal(p, voxel)) > 0.0f ? n : normal(p, voxel);
+  return glm::dot(n, geometric) > 0.0f ? n : geometric;
 }
 
 float SdfGrid::eval(const Vec3& p) const {

@@ -34,7 +34,8 @@ class SdfGrid {
   // the shading normal (the grid's `normals`: the same, or the smooth one, continuous across
   // voxels: trilinearly interpolated central-difference gradients of the grid's points).
   Vec3 normal(const Vec3& p, uint32_t voxel) const;
-  Vec3 shading_normal(const Vec3& p, uint32_t voxel) const;
+  // `geometric` is normal(p, voxel), which the caller already has.
+  Vec3 shading_normal(const Vec3& p, uint32_t voxel, const Vec3& geometric) const;
   // The interpolant at a world point (for tests and brute-force references).
   float eval(const Vec3& p) const;
 

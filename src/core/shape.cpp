@@ -110,22 +110,24 @@ float Primitive::area() const {
   return 4.0f * kPi * radius() * radius();
 }
 
+Primitive::AxisPoint Primitive::curve_axis_point(const Vec3& p) const {
+  if (kind == ShapeKind::LinearCurve) {
+    const float s = round_cone_parameter(p, p0, p2.x, p1, p2.y);
+    return {s, p0 + s * (p1 - p0), p1 - p0};
+  }
+  const glm::vec4* cp = bspline_points();
+  const float s = bspline_parameter(p, cp);
+  return {s, Vec3(bspline_point(cp, s)), Vec3(bspline_tangent(cp, s))};
+}
+
 Vec3 Primitive::normal_at(const Vec3& p) const {
   Vec3 n;
   switch (kind) {
     case ShapeKind::Triangle: n = ng; break;
     case ShapeKind::Sphere: n = glm::normalize(p - p0); break;
     case ShapeKind::SdfVoxel: n = sdf_grid()->normal(p, sdf_voxel()); break;
-    case ShapeKind::LinearCurve: {
-      const float s = round_cone_parameter(p, p0, p2.x, p1, p2.y);
-      n = glm::normalize(p - (p0 + s * (p1 - p0)));
-      break;
-    }
-    case ShapeKind::BsplineCurve: {
-      const glm::vec4* cp = bspline_points();
-      n = glm::normalize(p - Vec3(bspline_point(cp, bspline_parameter(p, cp))));
-      break;
-    }
+    case ShapeKind::LinearCurve:
+    case ShapeKind::BsplineCurve: return curve_normal(p, curve_axis_point(p));
   }
   return flip ? -n : n;
 }

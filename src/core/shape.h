@@ -1,5 +1,6 @@
 // Geometric primitives (triangles, spheres, SDF grid voxels), their bounds and ray intersection.
 #pragma once
+#include <algorithm>
 #include <cstdint>
 #include <cstring>
 #include <string>
@@ -91,7 +92,7 @@ struct alignas(64) Primitive {
   uint32_t sdf_voxel() const { return p2_index(); }
   const glm::vec4* bspline_points() const { return static_cast<const glm::vec4*>(p2_pointer()); }
   uint32_t curve_segment() const { return kind == ShapeKind::LinearCurve ? uint32_t(p2.z) : p2_index(); }
-  uint32_t curve_segments() const { return uint32_t(ng.x); }
+  uint32_t curve_segments() const { return std::max(uint32_t(ng.x), 1u); }
   // What p2 holds for an SDF voxel and a B-spline segment: a pointer and an index.
   void set_p2(const void* pointer, uint32_t index) {
     static_assert(sizeof(const void*) + sizeof(uint32_t) <= sizeof(Vec3), "p2 holds a pointer and an index");
@@ -113,6 +114,18 @@ struct alignas(64) Primitive {
   float area() const;
   // Outward (or winding) normal at a point on the surface, after `flip`.
   Vec3 normal_at(const Vec3& p) const;
+  // The nearest point of a curve segment's axis to a point p on its surface: the segment's
+  // parameter s in [0, 1], the axis point there and the axis's (unnormalised) tangent.
+  struct AxisPoint {
+    float s;
+    Vec3 centre, axis;
+  };
+  AxisPoint curve_axis_point(const Vec3& p) const;
+  // The normal of a curve at p from its axis point, after `flip`.
+  Vec3 curve_normal(const Vec3& p, const AxisPoint& a) const {
+    const Vec3 n = glm::normalize(p - a.centre);
+    return flip ? -n : n;
+  }
   // Point at sample u, uniformly by area, with its normal.
   Vec3 sample_point(const Vec2& u, Vec3* normal) const;
 };

@@ -179,7 +179,6 @@ TEST_CASE("bsplinecurve: random rays hit round B-spline curves where a brute-for
     std::vector<Primitive> curves;
     for (uint32_t s = 0; s < 4; ++s) curves.push_back(Primitive::bspline_curve(segments.data() + 4 * s, s, 4));
     const auto accels = both_backends(curves);
-    const Bounds box = bounds_of(curves);
     // The sweep is open at the curve's ends (as Embree's): rays whose first entry lies near
     // an end (where they may pass into the tube without crossing its surface) are left out.
     bool near_end = false;
