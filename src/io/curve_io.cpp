@@ -1,9 +1,8 @@
 // Curve files: see curve_io.h.
+#include "io/file_bytes.h"
 #include "io/curve_io.h"
 #include <cmath>
 #include <cstdlib>
-#include <fstream>
-#include <sstream>
 #include "core/error.h"
 
 namespace caustica {
@@ -63,12 +62,7 @@ std::vector<std::vector<glm::vec4>> parse_curves(const std::string& text, const 
 }
 
 std::vector<std::vector<glm::vec4>> read_curve_file(const std::string& path, size_t min_points) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path + ": cannot open the curve file");
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  if (in.bad()) throw InputError(path + ": error while reading the curve file");
-  return parse_curves(ss.str(), path, min_points);
+  return parse_curves(read_file_bytes(path, "curve file"), path, min_points);
 }
 
 }  // namespace caustica

@@ -21,9 +21,8 @@ bool Loader::read_bsplinecurve(const json& j, const std::string& p, std::vector<
 }
 
 void Loader::read_curves(const json& j, const std::string& p, std::vector<Primitive>& shapes, bool bspline) {
-  if (!emission_[material_ref(j, p)].is_black()) r.fail(child(p, "material"), "a curve cannot emit light here");
-  const std::string file = r.string(r.require(j, p, "file"), child(p, "file"));
-  const fs::path path = fs::path(file).is_absolute() ? fs::path(file) : fs::path(base_dir) / file;
+  refuse_emission(j, p, "a curve");
+  const fs::path path = r.input_file(r.require(j, p, "file"), child(p, "file"), base_dir, "curve file");
   const size_t degree = bspline ? 3 : 1;
   std::vector<std::vector<glm::vec4>> curves;
   try {

@@ -139,12 +139,7 @@ ColorParam JsonParams::texture(const std::string& key, const Color& fallback) co
 }
 
 std::string JsonParams::file(const std::string& key, const std::string& what) const {
-  const std::string name = r_.string(r_.require(m_, p_, key.c_str()), at(key));
-  const fs::path path = fs::path(name).is_absolute() ? fs::path(name) : fs::path(ctx_.base_dir) / name;
-  std::error_code ec;
-  if (!fs::exists(path, ec)) r_.fail(at(key), what + " not found: tried " + path.string());
-  if (!fs::is_regular_file(path, ec)) r_.fail(at(key), what + " is not a regular file: " + path.string());
-  return path.string();
+  return r_.input_file(r_.require(m_, p_, key.c_str()), at(key), ctx_.base_dir, what);
 }
 
 UvTransform JsonParams::uv_transform(const std::string& key) const {

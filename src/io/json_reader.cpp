@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <filesystem>
 #include <limits>
 #include <set>
 #include <sstream>
@@ -269,6 +270,17 @@ bool JsonReader::boolean(const nlohmann::json& v, const std::string& pointer) co
 std::string JsonReader::string(const nlohmann::json& v, const std::string& pointer) const {
   if (!v.is_string()) fail(pointer, "expected a string, found " + type_name(v));
   return v.get<std::string>();
+}
+
+std::string JsonReader::input_file(const nlohmann::json& v, const std::string& pointer, const std::string& base_dir,
+                                   const std::string& what) const {
+  namespace fs = std::filesystem;
+  const std::string name = string(v, pointer);
+  const fs::path path = fs::path(name).is_absolute() ? fs::path(name) : fs::path(base_dir) / name;
+  std::error_code ec;
+  if (!fs::exists(path, ec)) fail(pointer, what + " not found: tried " + path.string());
+  if (!fs::is_regular_file(path, ec)) fail(pointer, what + " is not a regular file: " + path.string());
+  return path.string();
 }
 
 Vec3 JsonReader::vec3(const nlohmann::json& v, const std::string& pointer) const {

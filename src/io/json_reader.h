@@ -45,6 +45,10 @@ class JsonReader {
   // Two numbers; `expected` names them in the message, e.g. "[u, v]".
   Vec2 vec2(const nlohmann::json& v, const std::string& pointer, const std::string& expected) const;
   Color color(const nlohmann::json& v, const std::string& pointer) const;  // non-negative
+  // A file name, relative to `base_dir` unless absolute, that must name an existing regular
+  // file; `what` names it in the message ("mesh file"). Returns the resolved path.
+  std::string input_file(const nlohmann::json& v, const std::string& pointer, const std::string& base_dir,
+                         const std::string& what) const;
 
  private:
   // "file: pointer" or, for a translated document, the place in the source it came from.

@@ -59,6 +59,8 @@ struct Loader {
   uint32_t add_material(const std::string& name, const json& m, const std::string& p);
 
   uint32_t material_ref(const json& obj, const std::string& p, const char* key = "material");
+  // For shapes that cannot be area lights: fails at p/material when its material emits.
+  void refuse_emission(const json& obj, const std::string& p, const std::string& shape);
 
   // An object block through the shape table; each shape reader fills `shapes` with the object's
   // primitives, or adds its objects itself and returns true (a mesh file with its materials).

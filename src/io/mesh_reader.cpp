@@ -108,9 +108,8 @@ MeshData Loader::read_mesh(const json& j, const std::string& p) {
                                       [&](const json& x, const std::string& xp) { return r.vec2(x, xp, "[u, v]"); });
     set_vertex_attributes(mesh, normals, uvs);
   } else {
-    const std::string file = r.string(r.require(j, p, "file"), child(p, "file"));
+    const fs::path path = r.input_file(r.require(j, p, "file"), child(p, "file"), base_dir, "mesh file");
     const int shape_index = j.contains("shape_index") ? int(r.integer(j["shape_index"], child(p, "shape_index"), 0, INT32_MAX)) : 0;
-    const fs::path path = fs::path(file).is_absolute() ? fs::path(file) : fs::path(base_dir) / file;
     try {
       mesh = read_mesh_file(path.string(), shape_index);
     } catch (const InputError& e) {

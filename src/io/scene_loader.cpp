@@ -1,10 +1,9 @@
 // Scene file loader: every key validated, every error located by file and JSON pointer. This
 // file: the document, the integrator block, materials and lights; the rest in loader.h's files.
+#include "io/file_bytes.h"
 #include "io/scene_loader.h"
 #include <filesystem>
-#include <fstream>
 #include <map>
-#include <sstream>
 #include "core/bsdf/registry.h"
 #include "core/lights/registry.h"
 #include "core/media/registry.h"
@@ -132,6 +131,10 @@ uint32_t Loader::material_ref(const json& obj, const std::string& p, const char*
   return it->second;
 }
 
+void Loader::refuse_emission(const json& obj, const std::string& p, const std::string& shape) {
+  if (!emission_[material_ref(obj, p)].is_black()) r.fail(child(p, "material"), shape + " cannot emit light here");
+}
+
 float Loader::sampling_weight(const json& j, const std::string& p) const {
   const double w = r.number_in(j["sampling_weight"], child(p, "sampling_weight"), 0.0, 1e9);
   if (!(w > 0.0)) r.fail(child(p, "sampling_weight"), "sampling_weight must be positive (a light never chosen adds nothing)");
@@ -237,13 +240,9 @@ LoadedScene load_scene(const std::string& path, const MitsubaOptions& mitsuba, c
   if (fs::is_directory(path, ec)) throw InputError(path + ": is a directory, not a scene file");
   // A FIFO or device would block or never end: only regular files are read.
   if (!fs::is_regular_file(path, ec)) throw InputError(path + ": not a regular file");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path + ": cannot open scene file for reading");
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  if (in.bad()) throw InputError(path + ": error while reading the scene file");
+  const std::string text = read_file_bytes(path, "scene file");
   const std::string base = fs::path(path).parent_path().string();
-  return parse_scene(ss.str(), path, base.empty() ? "." : base, mitsuba, overrides);
+  return parse_scene(text, path, base.empty() ? "." : base, mitsuba, overrides);
 }
 
 }  // namespace caustica

@@ -10,9 +10,8 @@ namespace caustica::scene_loading {
 namespace fs = std::filesystem;
 
 bool Loader::read_sdfgrid(const json& j, const std::string& p, std::vector<Primitive>& shapes) {
-  if (!emission_[material_ref(j, p)].is_black()) r.fail(child(p, "material"), "an sdfgrid cannot emit light (as in Mitsuba)");
-  const std::string file = r.string(r.require(j, p, "file"), child(p, "file"));
-  const fs::path path = fs::path(file).is_absolute() ? fs::path(file) : fs::path(base_dir) / file;
+  refuse_emission(j, p, "an sdfgrid");
+  const fs::path path = r.input_file(r.require(j, p, "file"), child(p, "file"), base_dir, "SDF grid file");
   VolumeGrid grid;
   try {
     grid = read_vol_file(path.string(), true);

@@ -1,3 +1,4 @@
+#include "io/file_bytes.h"
 #include "io/vdb_io.h"
 #include <poll.h>
 #include <signal.h>
@@ -10,7 +11,6 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
-#include <fstream>
 #include <mutex>
 #include <sstream>
 #include "core/error.h"
@@ -259,14 +259,7 @@ VolumeGrid read_vdb_file(const std::string& path, const std::string& grid_name) 
   // without end, loop, or corrupt memory. The structure is checked here first, and the file is
   // then read in a child process under a memory limit and a time limit: whatever OpenVDB does
   // with a bad file ends there, as an error naming the file.
-  std::string bytes;
-  {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) fail("cannot open the grid file");
-    std::ostringstream ss;
-    ss << in.rdbuf();
-    bytes = ss.str();
-  }
+  const std::string bytes = read_file_bytes(path, "grid file");
   check_vdb_structure(bytes, path);
   int fds[2];
   if (::pipe(fds) != 0) fail("cannot make a pipe to read the grid");

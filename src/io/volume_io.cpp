@@ -1,3 +1,4 @@
+#include "io/file_bytes.h"
 #include "io/volume_io.h"
 #include <cmath>
 #include <cstring>
@@ -71,12 +72,7 @@ VolumeGrid parse_vol(const std::string& b, const std::string& name, bool signed_
 }
 
 VolumeGrid read_vol_file(const std::string& path, bool signed_values) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path + ": cannot open the grid file");
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  if (in.bad()) throw InputError(path + ": error while reading the grid file");
-  return parse_vol(ss.str(), path, signed_values);
+  return parse_vol(read_file_bytes(path, "grid file"), path, signed_values);
 }
 
 VolumeGrid read_grid_file(const std::string& path, const std::string& grid_name) {

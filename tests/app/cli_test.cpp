@@ -542,7 +542,7 @@ TEST_CASE("cli: an unreadable scene file is a clear error", "[app]") {
   }
   const auto r = run_caustica("render locked.json -o out.png", dir);
   CHECK(r.exit_code == 1);
-  CHECK(r.err.find("cannot open scene file") != std::string::npos);
+  CHECK(r.err.find("cannot open the scene file") != std::string::npos);
 }
 
 TEST_CASE("cli: Ctrl-C or SIGTERM stops a render within a second and keeps the completed passes", "[app][interrupt]") {

@@ -11,9 +11,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-#include <fstream>
 #include <sstream>
 #include <set>
+#include "io/file_bytes.h"
 #include "core/error.h"
 #include "core/image.h"
 #include "io/meshes/mesh_file.h"
@@ -444,11 +444,7 @@ class Reader {
 MeshData parse_ply(const std::string& bytes, const std::string& name) { return Reader(bytes, name).read(); }
 
 MeshData read_ply(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError("mesh file cannot be read: " + path);
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return parse_ply(ss.str(), path);
+  return parse_ply(read_file_bytes(path, "mesh file"), path);
 }
 
 }  // namespace caustica

@@ -3,10 +3,9 @@
 // and indices. A table of shape offsets closes the file.
 #include <cmath>
 #include <cstring>
-#include <fstream>
 #include <limits>
-#include <sstream>
 #include <zlib.h>
+#include "io/file_bytes.h"
 #include "core/error.h"
 #include "core/memory.h"
 #include "core/shape.h"
@@ -214,11 +213,7 @@ MeshData parse_serialized(const std::string& bytes, const std::string& name, int
 }
 
 MeshData read_serialized(const std::string& path, int shape_index) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError("mesh file cannot be read: " + path);
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return parse_serialized(ss.str(), path, shape_index);
+  return parse_serialized(read_file_bytes(path, "mesh file"), path, shape_index);
 }
 
 }  // namespace caustica

@@ -1,15 +1,14 @@
 // Mitsuba XML through pugixml into XmlObjects; see xml_tree.h. This file: files, includes,
 // objects and references; property values are read in xml_values.cpp.
+#include "io/file_bytes.h"
 #include "io/mitsuba/xml_tree.h"
 #include "io/mitsuba/xml_parser.h"
 #include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <set>
-#include <sstream>
 #include <pugixml.hpp>
 #include "io/json_reader.h"
 
@@ -296,11 +295,13 @@ void Parser::include(Source& src, const pugi::xml_node& node, XmlObject& obj, in
   std::error_code ec;
   // Only regular files: a FIFO or a device would block or never end.
   if (!fs::is_regular_file(path, ec)) fail(src, node, "the included path is not a regular file: " + path);
-  std::ifstream in(path, std::ios::binary);
-  if (!in) fail(src, node, "cannot read the included file " + path);
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  Source& inc = load_source(ss.str(), path, fs::path(path).parent_path().string());
+  std::string text;
+  try {
+    text = read_file_bytes(path, "included file");
+  } catch (const InputError& e) {
+    fail(src, node, e.what());
+  }
+  Source& inc = load_source(text, path, fs::path(path).parent_path().string());
   const pugi::xml_node root = inc.doc.document_element();
   if (!root) throw InputError(path + ": the XML document has no element");
   ++include_depth_;
