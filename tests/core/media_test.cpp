@@ -6,6 +6,7 @@
 #include "core/media/heterogeneous.h"
 #include "core/media/homogeneous.h"
 #include "core/media/phase.h"
+#include "support/grids.h"
 #include "support/chi2.h"
 
 using namespace caustica;
@@ -128,13 +129,8 @@ TEST_CASE("media: an extinction of zero in a channel passes that channel, and a 
 namespace {
 // A 4 x 3 x 5 grid of densities in [0, 2) over [-1, 1]^3 (one channel).
 VolumeGrid random_grid(uint64_t seed) {
-  VolumeGrid g;
-  g.nx = 4, g.ny = 3, g.nz = 5;
-  g.box.lo = Vec3(-1.0f);
-  g.box.hi = Vec3(1.0f);
   Rng rng(seed);
-  for (int i = 0; i < g.nx * g.ny * g.nz; ++i) g.values.push_back(2.0f * rng.next_float());
-  return g;
+  return test::make_grid(4, 3, 5, Vec3(-1.0f), Vec3(1.0f), [&](int, int, int) { return 2.0f * rng.next_float(); });
 }
 }  // namespace
 

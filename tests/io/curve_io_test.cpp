@@ -6,6 +6,7 @@
 #include "io/curve_io.h"
 #include "io/scene_loader.h"
 #include "support/errors.h"
+#include "support/random.h"
 #include "support/temp_dir.h"
 
 using namespace caustica;
@@ -32,10 +33,7 @@ TEST_CASE("curve files: random corruptions never crash the reader (fuzz)", "[cur
   Rng rng(5);
   int errors = 0;
   for (int i = 0; i < 5000; ++i) {
-    std::string b = good;
-    const int edits = 1 + int(rng.next_float() * 4.0f);
-    for (int e = 0; e < edits; ++e) b[size_t(rng.next_float() * float(b.size())) % b.size()] = char(rng.next_u32() & 0xff);
-    if (rng.next_float() < 0.3f) b.resize(size_t(rng.next_float() * float(b.size())));
+    const std::string b = test::corrupt(good, rng, 0.3f);
     try {
       for (const auto& c : parse_curves(b, "fuzz.txt", 2)) {
         REQUIRE(c.size() >= 2);

@@ -14,6 +14,7 @@
 #include "io/mitsuba/xml_tree.h"
 #include "io/scene_loader.h"
 #include "io/volume_io.h"
+#include "support/grids.h"
 #include "support/errors.h"
 #include "support/render_util.h"
 #include "support/temp_dir.h"
@@ -1291,11 +1292,7 @@ TEST_CASE("mitsuba: heterogeneous media read grid and constant volumes placed as
           "[mitsuba][media]") {
   test::TempDir dir;
   // A 2 x 1 x 1 grid: 1 in its low-x voxel, 3 in its high-x one.
-  VolumeGrid g;
-  g.nx = 2, g.ny = 1, g.nz = 1;
-  g.box.lo = Vec3(-5.0f);
-  g.box.hi = Vec3(5.0f);
-  g.values = {1.0f, 3.0f};
+  VolumeGrid g = test::make_grid(2, 1, 1, Vec3(-5.0f), Vec3(5.0f), [](int x, int, int) { return 1.0f + 2.0f * float(x); });
   dir.write("two.vol", format_vol(g));
   g.values = {0.5f, 0.8f};
   dir.write("albedo.vol", format_vol(g));

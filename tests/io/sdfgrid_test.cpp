@@ -5,6 +5,7 @@
 #include "io/mitsuba/translate.h"
 #include "io/scene_loader.h"
 #include "io/volume_io.h"
+#include "support/grids.h"
 #include "support/errors.h"
 #include "support/render_util.h"
 #include "support/run.h"
@@ -19,19 +20,10 @@ namespace {
 // The distance to the unit sphere at the origin, on n^3 points spanning [-1.25, 1.25]^3 (in the
 // grid's unit cube, placed by to_world = translate(-1.25) scale(2.5)).
 VolumeGrid unit_sphere_sdf(int n, float offset = 0.0f) {
-  VolumeGrid g;
-  g.nx = g.ny = g.nz = n;
-  g.box.lo = Vec3(0.0f);
-  g.box.hi = Vec3(1.0f);
-  for (int z = 0; z < n; ++z) {
-    for (int y = 0; y < n; ++y) {
-      for (int x = 0; x < n; ++x) {
-        const Vec3 p = Vec3(float(x), float(y), float(z)) / float(n - 1) * 2.5f - Vec3(1.25f);
-        g.values.push_back(glm::length(p) - 1.0f + offset);
-      }
-    }
-  }
-  return g;
+  return test::make_grid(n, n, n, Vec3(0.0f), Vec3(1.0f), [&](int x, int y, int z) {
+    const Vec3 p = Vec3(float(x), float(y), float(z)) / float(n - 1) * 2.5f - Vec3(1.25f);
+    return glm::length(p) - 1.0f + offset;
+  });
 }
 
 const char* kPlaced = R"([[2.5, 0, 0, -1.25], [0, 2.5, 0, -1.25], [0, 0, 2.5, -1.25], [0, 0, 0, 1]])";

@@ -9,8 +9,10 @@
 #include "core/rng.h"
 #include "io/vdb_io.h"
 #include "io/volume_io.h"
+#include "support/grids.h"
 #include "support/temp_dir.h"
 #include "support/errors.h"
+#include "support/random.h"
 
 using namespace caustica;
 
@@ -88,10 +90,7 @@ TEST_CASE("vol files: corrupted and truncated files never crash the reader (fuzz
   Rng rng(17);
   int errors = 0;
   for (int i = 0; i < 20000; ++i) {
-    std::string b = good;
-    const int edits = 1 + int(rng.next_float() * 4.0f);
-    for (int e = 0; e < edits; ++e) b[size_t(rng.next_float() * float(b.size())) % b.size()] = char(rng.next_u32() & 0xff);
-    if (rng.next_float() < 0.3f) b.resize(size_t(rng.next_float() * float(b.size())));
+    const std::string b = test::corrupt(good, rng, 0.3f);
     try {
       // Half as densities, half as an SDF grid's signed values.
       const bool signed_values = i % 2 == 1;
@@ -108,13 +107,9 @@ TEST_CASE("vol files: corrupted and truncated files never crash the reader (fuzz
 namespace {
 // A 5 x 4 x 6 grid of densities in [0.1, 2) (none zero: every voxel active in a .vdb).
 VolumeGrid dense_grid() {
-  VolumeGrid g;
-  g.nx = 5, g.ny = 4, g.nz = 6;
-  g.box.lo = Vec3(-1.0f, 0.0f, 0.5f);
-  g.box.hi = Vec3(2.0f, 1.0f, 3.0f);
   Rng rng(41);
-  for (int i = 0; i < g.nx * g.ny * g.nz; ++i) g.values.push_back(0.1f + 1.9f * rng.next_float());
-  return g;
+  return test::make_grid(5, 4, 6, Vec3(-1.0f, 0.0f, 0.5f), Vec3(2.0f, 1.0f, 3.0f),
+                         [&](int, int, int) { return 0.1f + 1.9f * rng.next_float(); });
 }
 std::string read_bytes(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
@@ -185,10 +180,7 @@ TEST_CASE("vdb files: corrupted and truncated files never crash or hang the read
   Rng rng(47);
   int errors = 0, read = 0;
   for (int i = 0; i < 400; ++i) {
-    std::string b = good;
-    const int edits = 1 + int(rng.next_float() * 4.0f);
-    for (int e = 0; e < edits; ++e) b[size_t(rng.next_float() * float(b.size())) % b.size()] = char(rng.next_u32() & 0xff);
-    if (rng.next_float() < 0.2f) b.resize(size_t(rng.next_float() * float(b.size())));
+    const std::string b = test::corrupt(good, rng, 0.2f);
     std::ofstream(path, std::ios::binary) << b;
     try {
       const VolumeGrid g = read_grid_file(path, "");

@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 #include "io/scene_loader.h"
 #include "io/volume_io.h"
+#include "support/grids.h"
 #include "support/errors.h"
 #include "support/render_util.h"
 #include "support/run.h"
@@ -126,12 +127,11 @@ TEST_CASE("path through media: a white furnace filled with a grid medium (delta 
           "shell's radiance",
           "[trace][media][furnace]") {
   test::TempDir dir;
-  VolumeGrid g;
-  g.nx = 6, g.ny = 5, g.nz = 4;
-  g.box.lo = Vec3(-1.0f);
-  g.box.hi = Vec3(1.0f);
   Rng rng(9);
-  for (int i = 0; i < g.nx * g.ny * g.nz; ++i) g.values.push_back(3.0f * rng.next_float() * rng.next_float());
+  const VolumeGrid g = test::make_grid(6, 5, 4, Vec3(-1.0f), Vec3(1.0f), [&](int, int, int) {
+    const float a = rng.next_float();
+    return 3.0f * a * rng.next_float();
+  });
   dir.write("smoke.vol", format_vol(g));
   const std::string fog =
       R"({"type": "heterogeneous", "sigma_t": {"type": "gridvolume", "filename": "smoke.vol"}, "albedo": 1, "scale": 2,
