@@ -11,6 +11,7 @@
 namespace caustica {
 namespace {
 thread_local std::vector<Neighbour> tls_media_scratch;
+thread_local FlightRecord tls_flight;
 }  // namespace
 
 template <class W>
@@ -75,20 +76,28 @@ Color PhotonIntegrator::trace_media_eye(const Ray& camera_ray, const Scene& scen
         if (is_black(beta)) break;
       } else {
         // Free flight by delta tracking: whether the segment passes a point t is an unbiased
-        // estimate of the transmittance to it (one channel of extinction), so the photons before
-        // the flight's end count in full; where it ends the path scatters, a shadow ray there.
+        // estimate of the hero channel's transmittance to it, so the photons before the flight's
+        // end count in full where the extinction is grey, and where it is chromatic times the
+        // MIS weights of the null collisions before them (FlightRecord); where the flight ends
+        // the path scatters, a shadow ray there.
         const int hero = std::min(int(sampler.next1d() * 3.0f), 2);
-        const MediumEvent event = med.sample(ray, s, hero, sampler);
+        FlightRecord& flight = tls_flight;
+        const MediumEvent event = med.sample(ray, s, hero, sampler, &flight);
         const float end = event.scattered ? event.t : s;
-        L += beta * beam_estimate(ray, end, s, segment == 0, scene, medium, depth, [](float) { return 1.0f; });
-        if (!(event.pdf[hero] > 0.0f)) break;
+        if (flight.t.empty())
+          L += beta * beam_estimate(ray, end, s, segment == 0, scene, medium, depth, [](float) { return 1.0f; });
+        else
+          L += beta * beam_estimate(ray, end, s, segment == 0, scene, medium, depth, [&](float t) { return flight.at(t); });
+        // (The hero is chosen afresh for each flight: one-sample MIS over the channels, the
+        // weight over the mean of the densities, as the flight record's.)
+        const float pdf = (event.pdf.x + event.pdf.y + event.pdf.z) / 3.0f;
+        if (!(event.pdf[hero] > 0.0f) || !(pdf > 0.0f)) break;
         if (event.scattered) {
           if (depth < settings_.max_depth)
-            L += beta * event.weight / event.pdf[hero] *
-                 estimate_direct_in_medium(scene, ray.at(event.t), wo, medium, sampler, 0.0f);
+            L += beta * event.weight / pdf * estimate_direct_in_medium(scene, ray.at(event.t), wo, medium, sampler, 0.0f);
           break;
         }
-        beta *= event.weight / event.pdf[hero];
+        beta *= event.weight / pdf;
         if (is_black(beta)) break;
       }
     }

@@ -1,6 +1,7 @@
 // Participating media: phase functions against their densities (chi-square), the homogeneous
 // medium's transmittance and free-flight sampling against their integrals.
 #include <catch2/catch.hpp>
+#include <algorithm>
 #include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
 #include "core/media/heterogeneous.h"
@@ -257,19 +258,24 @@ TEST_CASE("media: a grid placed as Mitsuba 3 places it: the unit cube under to_w
         Approx(at(0, 1, 2)).epsilon(1e-4));
 }
 
+namespace {
+// Three channels of density over random_grid's box, each varying differently: lo + range * a
+// uniform number per channel and point.
+VolumeGrid chromatic_grid(uint64_t seed, const Color& lo, const Color& range) {
+  VolumeGrid g = random_grid(seed);
+  g.channels = 3;
+  g.values.clear();
+  Rng rng(seed);
+  for (int i = 0; i < g.nx * g.ny * g.nz; ++i)
+    for (int c = 0; c < 3; ++c) g.values.push_back(lo[c] + range[c] * rng.next_float());
+  return g;
+}
+}  // namespace
+
 TEST_CASE("media: a chromatic grid medium tracked in one hero channel gives every channel its transmittance and "
           "its scattered part (spectral MIS over the path), and ratio tracking each channel's transmittance",
           "[core][media]") {
-  // Three channels of density, each varying differently over the box.
-  VolumeGrid g = random_grid(23);
-  g.channels = 3;
-  g.values.clear();
-  Rng rng(29);
-  for (int i = 0; i < g.nx * g.ny * g.nz; ++i) {
-    g.values.push_back(0.2f + 0.5f * rng.next_float());
-    g.values.push_back(1.0f + rng.next_float());
-    g.values.push_back(3.0f * rng.next_float());
-  }
+  const VolumeGrid g = chromatic_grid(29, Color(0.2f, 1.0f, 0.0f), Color(0.5f, 1.0f, 3.0f));
   const Color albedo(0.9f, 0.6f, 0.3f);
   const HeterogeneousMedium m(std::make_unique<GridVolume>(g), std::make_unique<ConstVolume>(albedo), 1.0f,
                               std::make_unique<IsotropicPhase>());
@@ -297,6 +303,64 @@ TEST_CASE("media: a chromatic grid medium tracked in one hero channel gives ever
   }
   // The channels differ enough that one tracked alone would get the others wrong.
   CHECK(std::exp(-optical[2]) < 0.5 * std::exp(-optical[0]));
+}
+
+TEST_CASE("media: a chromatic flight's record of null collisions gives every channel its transmittance to each "
+          "point before the flight's end, whichever channel was tracked (the beam estimate's weights)",
+          "[core][media]") {
+  const VolumeGrid g = chromatic_grid(41, Color(0.1f, 0.8f, 0.0f), Color(0.4f, 1.0f, 2.5f));
+  const HeterogeneousMedium m(std::make_unique<GridVolume>(g), std::make_unique<ConstVolume>(Color(0.8f)), 1.0f,
+                              std::make_unique<IsotropicPhase>());
+  const GridVolume density(g);
+  const Ray ray{Vec3(-1.5f, 0.3f, -0.2f), glm::normalize(Vec3(1.0f, -0.15f, 0.1f)), kInfinity};
+  const float tmax = 5.0f;
+  const float points[] = {0.9f, 1.4f, 2.0f, 2.6f, 3.2f};
+  // Each point's optical depth per channel, by the midpoint rule.
+  std::vector<glm::dvec3> optical;
+  for (const float s : points) {
+    glm::dvec3 o(0.0);
+    constexpr int steps = 100000;
+    for (int i = 0; i < steps; ++i) o += glm::dvec3(density.eval(ray.at((i + 0.5f) * s / steps))) * double(s / steps);
+    optical.push_back(o);
+  }
+  FlightRecord record;
+  Sampler sampler(43);
+  constexpr int n = 400000;
+  std::vector<glm::dvec3> sum(std::size(points), glm::dvec3(0.0));
+  std::vector<glm::dvec3> survived(std::size(points), glm::dvec3(0.0));
+  glm::dvec3 heroes(0.0);
+  for (int i = 0; i < n; ++i) {
+    const int hero = std::min(int(sampler.next1d() * 3.0f), 2);
+    heroes[hero] += 1.0;
+    const MediumEvent e = m.sample(ray, tmax, hero, sampler, &record);
+    REQUIRE(std::is_sorted(record.t.begin(), record.t.end()));
+    const float end = e.scattered ? e.t : tmax;
+    for (size_t k = 0; k < std::size(points); ++k) {
+      if (points[k] >= end) continue;
+      const Color w = record.at(points[k]);
+      REQUIRE(max_component(w) <= 3.0f + 1e-4f);  // (the balance heuristic's bound)
+      sum[k] += glm::dvec3(w);
+      survived[k][hero] += 1.0;
+    }
+  }
+  for (size_t k = 0; k < std::size(points); ++k) {
+    INFO("point " << points[k]);
+    for (int c = 0; c < 3; ++c) {
+      INFO("channel " << c << ", optical depth " << optical[k][c]);
+      CHECK(sum[k][c] / n == Approx(std::exp(-optical[k][c])).epsilon(0.015));
+      // Survival alone is the tracked channel's transmittance.
+      CHECK(survived[k][c] / heroes[c] == Approx(std::exp(-optical[k][c])).epsilon(0.02));
+    }
+  }
+  // The channels differ enough that survival alone would get the others wrong.
+  CHECK(std::exp(-optical[4][2]) < 0.5 * std::exp(-optical[4][0]));
+  // A grey extinction records nothing (every channel's weight is survival's).
+  const HeterogeneousMedium grey(std::make_unique<GridVolume>(random_grid(37)), std::make_unique<ConstVolume>(Color(0.8f)),
+                                 1.0f, std::make_unique<IsotropicPhase>());
+  for (int i = 0; i < 100; ++i) {
+    grey.sample(ray, tmax, i % 3, sampler, &record);
+    REQUIRE(record.t.empty());
+  }
 }
 
 TEST_CASE("media: a path's hero throughput stays finite and exact over hundreds of thin-medium events",

@@ -3,6 +3,8 @@
 #include <catch2/catch.hpp>
 #include <regex>
 #include "io/scene_loader.h"
+#include "io/volume_io.h"
+#include "support/grids.h"
 #include "support/render_util.h"
 #include "support/run.h"
 #include "support/temp_dir.h"
@@ -44,6 +46,32 @@ TEST_CASE("photon through media: a white furnace filled with a scattering medium
   const auto r = render_text(furnace(R"({"type": "homogeneous", "sigma_t": [0.4, 1.0, 2.5], "albedo": 1,
                                           "phase": {"type": "hg", "g": 0.6}})"),
                              "photon", R"({"photons": 30000})", 64, 24, 24);
+  const Color mean = r.image.mean();
+  for (int c = 0; c < 3; ++c) CHECK(mean[c] == Approx(1.0).epsilon(0.03));
+  CHECK(r.stats.bad_samples == 0);
+}
+
+TEST_CASE("photon through media: a white furnace filled with a grid medium of chromatic extinction reads the "
+          "shell's radiance in every channel (the beam estimate weighted per channel along delta-tracked flights)",
+          "[trace][media][photon][furnace]") {
+  test::TempDir dir;
+  // Smooth in space (the estimate's radius blurs it little), far apart between the channels
+  // (one tracked channel's survival alone would be 25 % off in the others).
+  VolumeGrid g = test::make_grid(5, 4, 4, Vec3(-1.3f), Vec3(1.3f), [](int, int, int) { return 0.0f; });
+  g.channels = 3;
+  g.values.clear();
+  for (int z = 0; z < g.nz; ++z)
+    for (int y = 0; y < g.ny; ++y)
+      for (int x = 0; x < g.nx; ++x) {
+        const float w = 0.5f + 0.5f * std::sin(1.3f * float(x) + 0.7f * float(y) - 0.9f * float(z));
+        g.values.push_back(0.2f + 0.2f * w);
+        g.values.push_back(0.6f + 0.6f * (1.0f - w));
+        g.values.push_back(1.2f + 1.3f * w);
+      }
+  dir.write("smoke.vol", format_vol(g));
+  const std::string fog = R"({"type": "heterogeneous", "sigma_t": {"type": "gridvolume", "filename": "smoke.vol"},
+                              "albedo": 1, "phase": {"type": "hg", "g": 0.3}})";
+  const auto r = render_text(furnace(fog), "photon", R"({"photons": 30000})", 64, 24, 24, 1, 0, dir.path().string());
   const Color mean = r.image.mean();
   for (int c = 0; c < 3; ++c) CHECK(mean[c] == Approx(1.0).epsilon(0.03));
   CHECK(r.stats.bad_samples == 0);

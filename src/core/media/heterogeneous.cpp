@@ -28,7 +28,9 @@ bool HeterogeneousMedium::clip(const Ray& ray, float tmax, float& t0, float& t1)
   return t0 < t1 && majorant_ > 0.0f;
 }
 
-MediumEvent HeterogeneousMedium::sample(const Ray& ray, float tmax, int channel, Sampler& sampler) const {
+MediumEvent HeterogeneousMedium::sample(const Ray& ray, float tmax, int channel, Sampler& sampler,
+                                        FlightRecord* record) const {
+  if (record) record->clear();
   MediumEvent e;
   e.t = tmax;
   float t0, t1;
@@ -62,6 +64,11 @@ MediumEvent HeterogeneousMedium::sample(const Ray& ray, float tmax, int channel,
     }
     if (chromatic) {
       nulls *= Color(1.0f) - sigma / majorant_;
+      const float mean = (nulls.x + nulls.y + nulls.z) / 3.0f;
+      if (record && mean > 0.0f) {
+        record->t.push_back(t);
+        record->ratio.push_back(nulls / mean);
+      }
       // Weight and densities may share any factor: rescale before a long walk underflows them.
       const float m = max_component(nulls);
       if (m < 1e-20f && m > 0.0f) nulls /= m;

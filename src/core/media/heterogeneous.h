@@ -14,7 +14,8 @@ class HeterogeneousMedium final : public Medium {
  public:
   HeterogeneousMedium(std::unique_ptr<Volume> sigma_t, std::unique_ptr<Volume> albedo, float scale,
                       std::unique_ptr<PhaseFunction> phase);
-  MediumEvent sample(const Ray& ray, float tmax, int channel, Sampler& sampler) const override;
+  MediumEvent sample(const Ray& ray, float tmax, int channel, Sampler& sampler,
+                     FlightRecord* record = nullptr) const override;
   Color transmittance(const Ray& ray, float tmax, Sampler& sampler) const override;
   const PhaseFunction& phase() const override { return *phase_; }
   static std::unique_ptr<Medium> create(const Params& p);

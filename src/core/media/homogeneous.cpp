@@ -13,7 +13,8 @@ Color beer_lambert(const Color& sigma_t, float d) {
 HomogeneousMedium::HomogeneousMedium(const Color& sigma_t, const Color& albedo, std::unique_ptr<PhaseFunction> phase)
     : sigma_t_(sigma_t), sigma_s_(sigma_t * albedo), phase_(std::move(phase)) {}
 
-MediumEvent HomogeneousMedium::sample(const Ray&, float tmax, int channel, Sampler& sampler) const {
+MediumEvent HomogeneousMedium::sample(const Ray&, float tmax, int channel, Sampler& sampler, FlightRecord* record) const {
+  if (record) record->clear();  // (no null collisions)
   MediumEvent e;
   e.t = tmax;
   // Nothing scatters: the segment passes, its transmittance the weight (for every channel).

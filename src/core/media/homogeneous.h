@@ -9,7 +9,8 @@ namespace caustica {
 class HomogeneousMedium final : public Medium {
  public:
   HomogeneousMedium(const Color& sigma_t, const Color& albedo, std::unique_ptr<PhaseFunction> phase);
-  MediumEvent sample(const Ray& ray, float tmax, int channel, Sampler& sampler) const override;
+  MediumEvent sample(const Ray& ray, float tmax, int channel, Sampler& sampler,
+                     FlightRecord* record = nullptr) const override;
   Color transmittance(const Ray& ray, float tmax, Sampler& sampler) const override;
   const PhaseFunction& phase() const override { return *phase_; }
   bool homogeneous(Color& sigma_t, Color& sigma_s) const override {

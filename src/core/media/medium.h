@@ -7,7 +7,9 @@
 // channels of its whole density (spectral MIS, balance heuristic, over the path: the weights
 // stay within 3 however many events it has, where per-event weights would multiply).
 #pragma once
+#include <algorithm>
 #include <memory>
+#include <vector>
 #include "core/math.h"
 #include "core/media/phase.h"
 #include "core/sampler.h"
@@ -24,6 +26,27 @@ struct MediumEvent {
   // Per channel, the density of this event had that channel been the one sampled: sigma_t *
   // Tr(t) (scattered), Tr(tmax) (passed); 1 for events every channel takes alike.
   Color pdf{1.0f};
+};
+
+// The null collisions of a chromatic free flight, for estimates taken all along it (the beam
+// radiance estimate). Up to a point t of the flight, each channel's ratio-tracking product
+// prod (1 - sigma_c / majorant) over the null collisions before t, divided by the mean over the
+// channels of the same product (the density of those decisions had that channel been tracked:
+// one-sample MIS over a hero channel chosen uniformly, balance heuristic), times whether the
+// flight passed t, estimates each channel's transmittance to t without bias; the weights stay
+// within 3 where dividing by the hero's own product would not. Empty for a grey extinction.
+struct FlightRecord {
+  std::vector<float> t;      // the null collisions, in order
+  std::vector<Color> ratio;  // after each, the products so far over their mean
+  void clear() {
+    t.clear();
+    ratio.clear();
+  }
+  // The weight of the point at distance s: the ratio after the last collision before it.
+  Color at(float s) const {
+    const size_t n = size_t(std::lower_bound(t.begin(), t.end(), s) - t.begin());
+    return n == 0 ? Color(1.0f) : ratio[n - 1];
+  }
 };
 
 // A path's throughput through media under spectral MIS (hero-channel sampling) is beta / mean(r):
@@ -47,8 +70,10 @@ class Medium {
  public:
   virtual ~Medium() = default;
   // Free-flight sampling along ray (unit direction) over [0, tmax] (tmax may be infinite), by
-  // channel `channel`'s extinction (0, 1 or 2).
-  virtual MediumEvent sample(const Ray& ray, float tmax, int channel, Sampler& sampler) const = 0;
+  // channel `channel`'s extinction (0, 1 or 2). `record`, where given, is cleared and receives
+  // the flight's null collisions where the extinction is chromatic.
+  virtual MediumEvent sample(const Ray& ray, float tmax, int channel, Sampler& sampler,
+                             FlightRecord* record = nullptr) const = 0;
   // Transmittance over [0, tmax] (an unbiased estimate where the medium is not homogeneous).
   virtual Color transmittance(const Ray& ray, float tmax, Sampler& sampler) const = 0;
   virtual const PhaseFunction& phase() const = 0;
