@@ -330,11 +330,14 @@ std::vector<Photon> run_map(const Scene& scene, const PhotonPassSettings& s, boo
   // Each chunk's stored photons, in photon-index order, trimmed to what the wanted count keeps.
   std::vector<std::vector<PendingPhoton>> chunks, volume_chunks;
   const bool media = scene.has_media();
+  // Past the global map's count, volume photons alone (PhotonPassSettings::volume_min_divisor).
+  const size_t wanted_volume = media && !caustic && s.volume_min_divisor > 0 ? wanted / s.volume_min_divisor : 0;
   size_t stored = 0, stored_volume = 0;
-  uint64_t emitted = 0;
+  uint64_t emitted = 0, emitted_map = 0;  // all, and those that filled the map (surface_done)
+  uint64_t volume_cap = cap;
   uint64_t chunks_in_round = 8;
-  bool done = false;
-  while (!done && emitted < cap) {
+  bool surface_done = false, done = false;
+  while (!done && emitted < volume_cap) {
     if (stop_requested(s)) break;
     std::vector<std::vector<PendingPhoton>> chunk_out(chunks_in_round), chunk_volume(chunks_in_round);
     std::vector<std::vector<uint32_t>> chunk_counts(chunks_in_round);  // stored per emitted photon
@@ -365,17 +368,24 @@ std::vector<Photon> run_map(const Scene& scene, const PhotonPassSettings& s, boo
     });
     for (uint64_t r : chunk_rays) rays_out += r;
     // Keep photons in photon-index order up to the one that completes the wanted count (a scan
-    // of the counts; the chunks move, nothing is copied).
+    // of the counts; the chunks move, nothing is copied), then volume photons alone up to the
+    // one that completes theirs.
     for (uint64_t c = 0; c < chunks_in_round && !done; ++c) {
       size_t keep = 0, keep_volume = 0, taken = 0;
       for (uint32_t n : chunk_counts[c]) {
-        keep += n;
+        if (!surface_done) keep += n;
         if (media) keep_volume += chunk_volume_counts[c][taken];
         ++taken;
         ++emitted;
         // (In dense media a path stores many scattering points: their map stops at
         // PhotonPassSettings::kVolumeShare times the wanted count, so that memory stays bounded.)
-        if (stored + keep >= wanted || emitted >= cap || stored_volume + keep_volume >= PhotonPassSettings::kVolumeShare * wanted) {
+        const bool volume_full = stored_volume + keep_volume >= PhotonPassSettings::kVolumeShare * wanted;
+        if (!surface_done && (stored + keep >= wanted || emitted >= cap || volume_full)) {
+          surface_done = true;
+          emitted_map = emitted;
+          volume_cap = std::min(cap, emitted * PhotonPassSettings::kVolumeEmission);
+        }
+        if (surface_done && (stored_volume + keep_volume >= wanted_volume || emitted >= volume_cap || volume_full)) {
           done = true;
           break;
         }
@@ -389,23 +399,26 @@ std::vector<Photon> run_map(const Scene& scene, const PhotonPassSettings& s, boo
       stored_volume += keep_volume;
     }
     if (stop_requested(s)) break;
-    // Size the next round from the storage rate seen so far (deterministic).
-    const double rate = emitted > 0 ? double(stored) / double(emitted) : 0.0;
-    const double need = rate > 0 ? double(wanted - std::min(wanted, stored)) / rate : double(cap);
+    // Size the next round from the storage rate seen so far (deterministic): the map's, then
+    // the volume photons'.
+    const double rate = emitted > 0 ? double(surface_done ? stored_volume : stored) / double(emitted) : 0.0;
+    const size_t have = surface_done ? stored_volume : stored, goal = surface_done ? wanted_volume : wanted;
+    const double need = rate > 0 ? double(goal - std::min(goal, have)) / rate : double(volume_cap);
     chunks_in_round = std::clamp<uint64_t>(uint64_t(need * 1.05 / kChunk) + 1, 1, 256);
   }
+  if (!surface_done) emitted_map = emitted;
   // A stopped pass keeps nothing: no caller uses part of a map, and normalising and indexing
   // millions of photons would delay the stop by seconds.
   if (stop_requested(s)) return result;
-  if (stored < wanted && emitted >= cap) {
+  if (stored < wanted && emitted_map >= cap) {
     warnings.push_back(std::string(caustic ? "caustic" : "global") + " photon map: only " + std::to_string(stored) +
-                       " of " + std::to_string(wanted) + " photons stored after " + std::to_string(emitted) +
+                       " of " + std::to_string(wanted) + " photons stored after " + std::to_string(emitted_map) +
                        " emitted (the cap); most photons escape or miss " +
                        (caustic ? "the specular objects" : "diffuse surfaces"));
   }
-  emitted_out = emitted;
+  emitted_out = emitted_map;
   volume_out = normalise(volume_chunks, emitted, volume_scale, true);
-  return normalise(chunks, emitted, flux_scale);
+  return normalise(chunks, emitted_map, flux_scale);
 }
 
 // The caustic pass's emission bound: kCausticShare times the global pass's (at least 2^18). In

@@ -21,6 +21,13 @@ struct PhotonPassSettings {
   bool caustic_volume_only = false;
   // In media, a pass stops once its volume photons number this times global_photons.
   static constexpr size_t kVolumeShare = 8;
+  // In media, once the global map is full the emission goes on for volume photons alone until
+  // they number global_photons / volume_min_divisor (0: it does not), or it has emitted
+  // kVolumeEmission times what filled the global map: a small medium in a large scene
+  // (Mitsuba's media test scenes: 168 volume photons beside 10000 surface ones) would otherwise
+  // take a first radius a third of its size, and its estimate the bias of such a blur.
+  size_t volume_min_divisor = 4;
+  static constexpr uint64_t kVolumeEmission = 4;
   uint64_t seed = 0;
   const std::atomic<bool>* cancel = nullptr;  // once set, the pass stops within a chunk and keeps no photons
 };
@@ -47,7 +54,9 @@ struct PhotonPassResult {
 // by the sampled reflectance there. Caustic map: a separate emission aimed at the bounding
 // spheres of the other (specular and near-specular) objects, stored only at the first gather
 // surface of an L S+ D path.
-// Emission continues until the wanted counts are stored (or a cap is reached, with a warning).
+// Emission continues until the wanted counts are stored (or a cap is reached, with a warning);
+// in media, for the volume photons, as far as volume_min_divisor and kVolumeEmission say
+// (each map's flux divided by the photons emitted while it was filled).
 // Photon i is seeded from hash(i, seed): the maps are the same for any thread count.
 PhotonPassResult trace_photons(const Scene& scene, const PhotonPassSettings& settings);
 

@@ -181,3 +181,63 @@ TEST_CASE("photon pass: caustic photons pass through plastic's coat and land on 
   CHECK(total > 0.04 * 10 * cone * 0.5);
   CHECK(total < 0.3 * 10 * cone);
 }
+
+TEST_CASE("photon pass: in a small medium the emission goes on for volume photons alone, the global map unchanged "
+          "and the volume photons' total flux the same as without it",
+          "[photon][media]") {
+  // A fog ball of radius 0.25 in the closed box: a few per cent of the photons scatter in it.
+  std::string text = kClosedBox;
+  text.replace(text.find(R"("objects": [)"), std::strlen(R"("objects": [)"),
+               R"("media": {"fog": {"type": "homogeneous", "sigma_t": 4, "albedo": [0.9, 0.7, 0.5]}},
+                  "objects": [{"type": "sphere", "center": [0.3, -0.4, 0.2], "radius": 0.25, "material": "boundary", "interior": "fog"},)");
+  text.replace(text.find(R"("materials": {)"), std::strlen(R"("materials": {)"),
+               R"("materials": {"boundary": {"type": "null"},)");
+  LoadedScene loaded = parse_scene(text, "fog-box.json", ".");
+  const Scene& scene = *loaded.scene;
+  REQUIRE(scene.has_media());
+  PhotonPassSettings s;
+  s.global_photons = 4000;
+  s.caustic_photons = 0;
+  // Each pass's total volume flux (power times scale): with the continuation and without.
+  auto total = [](const PhotonPassResult& r) {
+    glm::dvec3 sum(0.0);
+    for (const Photon& p : r.volume) sum += glm::dvec3(p.power()) * double(r.volume_scale);
+    return sum;
+  };
+  glm::dvec3 with(0.0), without(0.0), with2(0.0), without2(0.0);
+  constexpr int kSeeds = 24;
+  size_t volume_with = 0, volume_without = 0;
+  for (int seed = 0; seed < kSeeds; ++seed) {
+    s.seed = uint64_t(seed) + 100;
+    s.volume_min_divisor = 4;
+    const PhotonPassResult a = trace_photons(scene, s);
+    s.volume_min_divisor = 0;
+    const PhotonPassResult b = trace_photons(scene, s);
+    // The global map is the same photons from the same emission.
+    REQUIRE(a.global.size() >= 4000);  // (the photon that completes the count keeps all its bounces)
+    REQUIRE(a.global.size() == b.global.size());
+    REQUIRE(a.global_emitted == b.global_emitted);
+    REQUIRE(a.global_scale == b.global_scale);
+    REQUIRE(std::memcmp(a.global.data(), b.global.data(), a.global.size() * sizeof(Photon)) == 0);
+    volume_with += a.volume.size();
+    volume_without += b.volume.size();
+    const glm::dvec3 ta = total(a), tb = total(b);
+    with += ta, with2 += ta * ta, without += tb, without2 += tb * tb;
+  }
+  INFO("volume photons a pass: " << volume_with / kSeeds << " with, " << volume_without / kSeeds << " without");
+  // Without, a few per cent of the global count; with, up to a quarter of it: here the bound
+  // on the emission (kVolumeEmission times the global map's) ends it first.
+  CHECK(volume_without < 4000 / 8 * kSeeds);
+  CHECK(double(volume_with) > 0.9 * double(PhotonPassSettings::kVolumeEmission) * double(volume_without));
+  // The totals agree within four standard errors of their difference.
+  for (int c = 0; c < 3; ++c) {
+    const double n = kSeeds;
+    const double ma = with[c] / n, mb = without[c] / n;
+    const double va = (with2[c] / n - ma * ma) / (n - 1), vb = (without2[c] / n - mb * mb) / (n - 1);
+    INFO("channel " << c << ": " << ma << " with, " << mb << " without");
+    CHECK(ma > 0.0);
+    CHECK(std::abs(ma - mb) < 4.0 * std::sqrt(va + vb));
+    // (and the continuation's spread is the smaller: it averages more photons)
+    CHECK(va < vb);
+  }
+}
