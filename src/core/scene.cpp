@@ -211,4 +211,20 @@ const Light* Scene::sample_photon_light(float u, float& pmf) const {
   return lights[light_sampler_.sample_by_power(u, pmf)].get();
 }
 
+const Light* Scene::sample_light_defensive(float u, float& pmf) const {
+  pmf = 0.0f;
+  if (lights.empty()) return nullptr;
+  const size_t n = lights.size();
+  constexpr float kBelowOne = 0x1.fffffep-1f;  // (u < 1: 2u and 2u - 1 must stay below 1)
+  size_t i;
+  if (u < 0.5f) {
+    float by_power;
+    i = light_sampler_.sample_by_power(std::min(2.0f * u, kBelowOne), by_power);
+  } else {
+    i = std::min(n - 1, size_t(std::min(2.0f * u - 1.0f, kBelowOne) * float(n)));
+  }
+  pmf = 0.5f * (light_sampler_.pmf_by_power(i) + 1.0f / float(n));
+  return lights[i].get();
+}
+
 }  // namespace caustica

@@ -124,15 +124,72 @@ bool clip_to_cone(const Ray& ray, float tmax, const Vec3& apex, const Vec3& axis
 }
 }  // namespace
 
+namespace {
+// Equiangular distance sampling (Kulla and Fajardo 2012) along [lo, hi] of ray towards point c:
+// t = t0 + D tan(theta), theta uniform between the ends as seen from c; density
+// D / ((theta_b - theta_a) (D^2 + (t - t0)^2)). False where the range is empty.
+bool sample_equiangular(const Ray& ray, float lo, float hi, const Vec3& c, float u, float& t, float& pdf) {
+  const float t0 = glm::dot(c - ray.origin, ray.dir);
+  const float D = std::max(glm::length(c - ray.at(t0)), 1e-6f * (1.0f + std::abs(t0)));
+  const float theta_a = std::atan2(lo - t0, D);
+  const float theta_b = std::isfinite(hi) ? std::atan2(hi - t0, D) : 0.5f * kPi;
+  if (!(theta_b > theta_a)) return false;
+  const float theta = theta_a + u * (theta_b - theta_a);
+  t = std::clamp(t0 + D * std::tan(theta), lo, hi);
+  const float h = t - t0;
+  pdf = D / ((theta_b - theta_a) * (D * D + h * h));
+  return pdf > 0.0f;
+}
+
+// The radiance an area light sends to x (in `medium`) and x scatters towards wo, by two samples
+// under MIS (power heuristic): a point of the light (sample_li) and a phase-function direction
+// that reaches the light's surface (past the surfaces shadow rays pass). Each stays
+// bounded where x nears the light, where the point alone (cos / d^2 over an area density)
+// does not.
+Color area_light_at(const Scene& scene, const Light& light, const Vec3& x, const Vec3& wo, int32_t medium,
+                    const PhaseFunction& phase, Sampler& sampler) {
+  Color L(0.0f);
+  const Vec2 u_light = sampler.next2d(), u_phase = sampler.next2d();
+  LightSample ls;
+  if (light.sample_li(x, u_light, ls) && ls.pdf > 0.0f && !is_black(ls.weight)) {
+    const float f = phase.eval(wo, ls.wi);
+    if (f > 0.0f) {
+      ++sampler.rays;
+      const Color tr = scene.transmittance(spawn_ray_to(x, Vec3(0.0f), ls.p, ls.n), medium, sampler);
+      L += tr * ls.weight * (f * mis_weight(ls.pdf, f));
+    }
+  }
+  Vec3 wi;
+  const float f = phase.sample(wo, u_phase, wi);
+  if (!(f > 0.0f)) return L;
+  Ray r{x, wi, kInfinity};
+  SurfaceHit hit;
+  bool found = false;
+  for (int crossing = 0; crossing < 32; ++crossing) {
+    ++sampler.rays;
+    found = scene.intersect(r, hit);
+    if (!found || !Scene::passes_straight(hit)) break;  // (what scene.transmittance passes)
+    r = Scene::continued(r, hit);
+  }
+  if (!found || hit.light < 0 || scene.lights[size_t(hit.light)].get() != &light) return L;
+  const Color Le = scene.emitted(hit, hit.frame.to_local(-wi));
+  if (is_black(Le)) return L;
+  const float pdf_light = light.pdf_li(x, hit.p, hit.n);
+  ++sampler.rays;
+  const Color tr = scene.transmittance(spawn_ray_to(x, Vec3(0.0f), hit.p, hit.n), medium, sampler);
+  return L + tr * Le * mis_weight(f, pdf_light);  // (the phase sample's weight f / f is 1)
+}
+}  // namespace
+
 Color single_scattering(const Scene& scene, const Ray& ray, float tmax, int32_t medium, const Color& sigma_t,
-                        const Color& sigma_s, Sampler& sampler) {
+                        const Color& sigma_s, Sampler& sampler, const Light* end_light) {
   const float u_light = sampler.next1d();
   const Vec2 u = sampler.next2d();
   const float u_t = sampler.next1d();
-  // By power: the light sampler's choice at one point (the ray's origin) would miss a spot
-  // whose cone the segment crosses farther on.
+  // By power and uniformly (Scene::sample_light_defensive): the light sampler's choice at one
+  // point (the ray's origin) would miss a spot whose cone the segment crosses farther on.
   float pmf = 0.0f;
-  const Light* light = scene.sample_photon_light(u_light, pmf);
+  const Light* light = scene.sample_light_defensive(u_light, pmf);
   if (!light || !(pmf > 0.0f)) return Color(0.0f);
   const PhaseFunction& phase = scene.media[size_t(medium)]->phase();
   const Vec3 wo = -ray.dir;
@@ -148,6 +205,16 @@ Color single_scattering(const Scene& scene, const Ray& ray, float tmax, int32_t 
     LightSample ls;
     if (!(t < tmax) || !light->sample_li(ray.at(t), u, ls)) return Color(0.0f);
     wi = ls.wi, to = ls.p, to_n = ls.n, incident = ls.weight;
+  } else if (light == end_light && !light->is_delta()) {
+    // The area light the segment ends on: t sampled towards a point of it (which only guides
+    // the distance: the estimate is unbiased whatever the point), then its light at t under MIS
+    // (area_light_at). The point's own light (below) would weigh cos / d^2 over an area density
+    // where t nears the segment's end on the light: specks. Elsewhere it is the better one (its
+    // distance density cancels the 1 / d^2 of the very point).
+    const LightPoint guide = light->sample_origin(u);
+    if (!(guide.pdf > 0.0f) || !sample_equiangular(ray, 0.0f, tmax, guide.p, u_t, t, pdf_t)) return Color(0.0f);
+    const Color at = area_light_at(scene, *light, ray.at(t), wo, medium, phase, sampler);
+    return beer_lambert(sigma_t, t) * sigma_s * at / (pmf * pdf_t);
   } else {
     const LightPoint lp = light->sample_origin(u);
     if (!(lp.pdf > 0.0f)) return Color(0.0f);
@@ -158,17 +225,7 @@ Color single_scattering(const Scene& scene, const Ray& ray, float tmax, int32_t 
     if (lb.cos_theta_e >= 1.0f && lb.normals.cos_theta > 0.0f && lb.bounds.lo == lb.bounds.hi &&
         !clip_to_cone(ray, tmax, lb.bounds.lo, lb.normals.axis, lb.normals.cos_theta, lo, hi))
       return Color(0.0f);
-    // Equiangular: t = t0 + D tan(theta), theta uniform between the segment's ends as seen from
-    // the light's point; density D / ((theta_b - theta_a) (D^2 + (t - t0)^2)).
-    const float t0 = glm::dot(lp.p - ray.origin, ray.dir);
-    const float D = std::max(glm::length(lp.p - ray.at(t0)), 1e-6f * (1.0f + std::abs(t0)));
-    const float theta_a = std::atan2(lo - t0, D);
-    const float theta_b = std::isfinite(hi) ? std::atan2(hi - t0, D) : 0.5f * kPi;
-    if (!(theta_b > theta_a)) return Color(0.0f);
-    const float theta = theta_a + u_t * (theta_b - theta_a);
-    t = std::clamp(t0 + D * std::tan(theta), lo, hi);
-    const float h = t - t0;
-    pdf_t = D / ((theta_b - theta_a) * (D * D + h * h));
+    if (!sample_equiangular(ray, lo, hi, lp.p, u_t, t, pdf_t)) return Color(0.0f);
     const Vec3 d = lp.p - ray.at(t);
     const float dist2 = glm::dot(d, d);
     if (!(dist2 > 0.0f)) return Color(0.0f);

@@ -23,12 +23,15 @@ Color estimate_direct_in_medium(const Scene& scene, const Vec3& p, const Vec3& w
 
 // Single scattering towards -ray.dir along [0, tmax] (tmax may be infinite) of ray inside a
 // homogeneous medium (sigma_t, sigma_s, its phase function): the integral of Tr(t) sigma_s
-// times the light scattered at t, by one light (chosen by power, as photons are), one point on it, and t by equiangular sampling towards that point (Kulla and
-// Fajardo 2012: the density follows 1 / distance^2, so a light close to the ray adds no
-// fireflies), the shadow ray through the media from t. A light at infinity takes t by the
-// mean extinction instead.
+// times the light scattered at t, by one light (chosen by power or uniformly, half the time
+// each: Scene::sample_light_defensive), one point on it, and t by equiangular sampling towards
+// that point (Kulla and Fajardo 2012: the density follows 1 / distance^2, so a light close to
+// the ray adds no fireflies), the shadow ray through the media from t. A light at infinity
+// takes t by the mean extinction instead. `end_light`: the area light the segment ends on, if
+// any; for it the point only guides t, and the light at t is a light sample and a phase sample
+// under MIS (bounded where t nears the light's surface).
 Color single_scattering(const Scene& scene, const Ray& ray, float tmax, int32_t medium, const Color& sigma_t,
-                        const Color& sigma_s, Sampler& sampler);
+                        const Color& sigma_s, Sampler& sampler, const Light* end_light = nullptr);
 
 // n light samples at one point, stratified: the light's choice over n strata of [0, 1), the
 // point on it over an sx x sy grid of [0, 1)^2 (the remainder unstratified), the two paired at

@@ -70,7 +70,10 @@ Color PhotonIntegrator::trace_media_eye(const Ray& camera_ray, const Scene& scen
         // with it, single scattering from a point sampled equiangularly towards a light's.
         if (!is_black(sigma_s)) {
           L += beta * beam_estimate(ray, s, s, segment == 0, scene, medium, depth, [&](float t) { return beer_lambert(sigma_t, t); });
-          if (depth < settings_.max_depth) L += beta * single_scattering(scene, ray, s, medium, sigma_t, sigma_s, sampler);
+          if (depth < settings_.max_depth) {
+            const Light* end_light = found && hit.light >= 0 ? scene.lights[size_t(hit.light)].get() : nullptr;
+            L += beta * single_scattering(scene, ray, s, medium, sigma_t, sigma_s, sampler, end_light);
+          }
         }
         beta *= beer_lambert(sigma_t, s);  // (0 past an infinite segment where sigma_t > 0)
         if (is_black(beta)) break;

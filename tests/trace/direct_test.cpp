@@ -79,3 +79,71 @@ TEST_CASE("direct: stratified samples of an area light average to the independen
   CHECK(mean_i == Approx(exact).epsilon(0.01));
   CHECK(var_s < 0.6 * var_i);  // (measured 0.47: the quad's two triangles split the strata)
 }
+
+TEST_CASE("direct: single scattering from an area light in fog matches its double integral, for a ray passing the "
+          "light and one ending on it",
+          "[trace][direct][media]") {
+  // Fog everywhere (around the camera, bounded by nothing), a 1 x 1 light at height 1 facing down.
+  LoadedScene loaded = parse_scene(R"({"camera": {"position": [0, -3, 0], "look_at": [0, 0, 0], "up": [0, 0, 1], "medium": "fog"},
+    "media": {"fog": {"type": "homogeneous", "sigma_t": 0.5, "albedo": 0.8}},
+    "materials": {"light": {"type": "diffuse", "albedo": 0, "emission": [2, 2, 2]}},
+    "objects": [{"type": "quad", "origin": [-0.5, 1, -0.5], "edge1": [1, 0, 0], "edge2": [0, 0, 1], "material": "light"}]})",
+                                   "fog-light.json", ".");
+  const Scene& scene = *loaded.scene;
+  REQUIRE(scene.lights.size() == 1);
+  const int32_t medium = scene.camera_medium;
+  REQUIRE(medium >= 0);
+  const Light& light = *scene.lights[0];
+  const Vec3 n = light.sample_origin(Vec2(0.5f)).n;
+  const float Le = light.surface_radiance().x;
+  const double sigma_t = 0.5, sigma_s = 0.4;
+  // The in-scattered light along [0, tmax]: integral of Tr(t) sigma_s (1 / 4 pi) Le cos_l / d^2
+  // Tr(d) over the light's area and t, by the midpoint rule (the light faces down: cos_l from n).
+  auto brute = [&](const Ray& ray, double tmax) {
+    constexpr int kT = 1500, kA = 120;
+    double sum = 0;
+    for (int i = 0; i < kT; ++i) {
+      const double t = (i + 0.5) * tmax / kT;
+      const Vec3 x = ray.at(float(t));
+      double s = 0;
+      for (int a = 0; a < kA; ++a)
+        for (int b = 0; b < kA; ++b) {
+          const Vec3 y(-0.5f + (a + 0.5f) / kA, 1.0f, -0.5f + (b + 0.5f) / kA);
+          const Vec3 d = x - y;
+          const double d2 = glm::dot(d, d), cos_l = glm::dot(glm::normalize(d), n);
+          if (cos_l > 0) s += Le * cos_l / d2 * std::exp(-sigma_t * std::sqrt(d2)) / (double(kA) * kA);
+        }
+      sum += std::exp(-sigma_t * t) * sigma_s / (4.0 * kPi) * s * tmax / kT;
+    }
+    return sum;
+  };
+  struct Case {
+    Ray ray;
+    float tmax;
+  };
+  // Passing under the light at height 0.6 (to 30, where the fog has taken all); rising into its
+  // middle from 2 below (ending on it: the shading points come arbitrarily close to the light).
+  const Case cases[] = {{Ray{Vec3(-3.0f, 0.6f, 0.1f), Vec3(1.0f, 0.0f, 0.0f), kInfinity}, 30.0f},
+                        {Ray{Vec3(0.1f, -1.0f, 0.2f), Vec3(0.0f, 1.0f, 0.0f), kInfinity}, 2.0f}};
+  for (const Case& c : cases) {
+    const double expected = brute(c.ray, c.tmax);
+    // The ray ending on the light also as the eye path gives it: that light named as the
+    // segment's end (a light sample and a phase sample under MIS at t).
+    for (const Light* end : {static_cast<const Light*>(nullptr), c.tmax < 10.0f ? &light : nullptr}) {
+      Sampler sampler(61);
+      constexpr int kN = 400000;
+      double sum = 0, sum2 = 0;
+      for (int i = 0; i < kN; ++i) {
+        const double v = single_scattering(scene, c.ray, c.tmax, medium, Color(0.5f), Color(0.4f), sampler, end).x;
+        sum += v, sum2 += v * v;
+      }
+      const double mean = sum / kN, se = std::sqrt((sum2 / kN - mean * mean) / kN);
+      INFO("tmax " << c.tmax << (end ? ", ending on the light" : "") << ": expected " << expected << ", mean " << mean
+                   << " +- " << se);
+      CHECK(expected > 0.005);
+      CHECK(mean == Approx(expected).epsilon(0.02));
+      // A spread that lets 400k samples say so.
+      CHECK(se < 0.005 * expected);
+    }
+  }
+}
