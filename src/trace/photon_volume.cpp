@@ -93,7 +93,7 @@ Color PhotonIntegrator::trace_media_eye(const Ray& camera_ray, const Scene& scen
           L += beta * beam_estimate(ray, end, s, segment == 0, scene, medium, depth, [&](float t) { return flight.at(t); });
         // (The hero is chosen afresh for each flight: one-sample MIS over the channels, the
         // weight over the mean of the densities, as the flight record's.)
-        const float pdf = (event.pdf.x + event.pdf.y + event.pdf.z) / 3.0f;
+        const float pdf = average(event.pdf);
         if (!(event.pdf[hero] > 0.0f) || !(pdf > 0.0f)) break;
         if (event.scattered) {
           if (depth < settings_.max_depth)

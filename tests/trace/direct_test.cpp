@@ -1,6 +1,7 @@
 // Next-event estimation: stratified light samples.
 #include <catch2/catch.hpp>
 #include <set>
+#include <vector>
 #include "io/scene_loader.h"
 #include "trace/direct.h"
 #include "support/scenes.h"
@@ -129,7 +130,9 @@ TEST_CASE("direct: single scattering from an area light in fog matches its doubl
     const double expected = brute(c.ray, c.tmax);
     // The ray ending on the light also as the eye path gives it: that light named as the
     // segment's end (a light sample and a phase sample under MIS at t).
-    for (const Light* end : {static_cast<const Light*>(nullptr), c.tmax < 10.0f ? &light : nullptr}) {
+    std::vector<const Light*> ends{nullptr};
+    if (c.tmax < 10.0f) ends.push_back(&light);
+    for (const Light* end : ends) {
       Sampler sampler(61);
       constexpr int kN = 400000;
       double sum = 0, sum2 = 0;

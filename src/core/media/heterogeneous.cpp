@@ -64,10 +64,9 @@ MediumEvent HeterogeneousMedium::sample(const Ray& ray, float tmax, int channel,
     }
     if (chromatic) {
       nulls *= Color(1.0f) - sigma / majorant_;
-      const float mean = (nulls.x + nulls.y + nulls.z) / 3.0f;
-      if (record && mean > 0.0f) {
+      if (record && average(nulls) > 0.0f) {
         record->t.push_back(t);
-        record->ratio.push_back(nulls / mean);
+        record->ratio.push_back(nulls / average(nulls));
       }
       // Weight and densities may share any factor: rescale before a long walk underflows them.
       const float m = max_component(nulls);
