@@ -124,10 +124,6 @@ std::unique_ptr<Integrator> integrator_for(const LoadedScene& loaded, const std:
       throw InputError("integrator \"" + spec + "\": " + e.what());
     }
   }
-  if (scene.has_media() && !integrator->supports_media()) {
-    throw InputError(options.scene + ": the scene has participating media, which the " + integrator->name() +
-                     " integrator does not render yet (path and photon do)");
-  }
   return integrator;
 }
 

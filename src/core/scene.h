@@ -107,6 +107,11 @@ class Scene {
     const Vec3 origin = offset_origin(hit.p, hit.n, ray.dir);
     return Ray{origin, ray.dir, ray.tmax - glm::length(origin - ray.origin)};
   }
+  // Takes ray on past a medium boundary (is_medium_boundary(hit)) into the medium beyond it.
+  static void cross(const SurfaceHit& hit, Ray& ray, int32_t& medium) {
+    medium = hit.media->entered(ray.dir, hit.n);
+    ray = continued(ray, hit);
+  }
   // Chooses a light for a shadow ray from p (shading normal n), by render.light_sampler;
   // null where none can reach p.
   const Light* sample_light(const Vec3& p, const Vec3& n, float u, float& pmf) const {

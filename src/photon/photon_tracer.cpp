@@ -191,8 +191,9 @@ void trace_photon(const Scene& scene, Ray ray, Color flux, int32_t medium, bool 
           if (caustic_path) volume.push_back({p, hero_throughput(beta, r), wo, Vec3(0.0f), depth, volume_photon_tag(medium, true)});
           return;
         }
-        // (Not the photons straight from a light: single scattering is the eye's shadow rays'.)
-        if (depth > 0) volume.push_back({p, hero_throughput(beta, r), wo, Vec3(0.0f), depth, volume_photon_tag(medium, caustic_path)});
+        // (Not the photons straight from a light, unless asked: single scattering is the eye's
+        // shadow rays'.)
+        if (depth > 0 || s.volume_direct) volume.push_back({p, hero_throughput(beta, r), wo, Vec3(0.0f), depth, volume_photon_tag(medium, caustic_path)});
         specular_path = false;
         // Russian roulette by the scattering albedo (the weight's ratio to the hero density).
         const float survive = std::min(1.0f, max_component(event.weight) / event.pdf[hero]);
@@ -208,8 +209,7 @@ void trace_photon(const Scene& scene, Ray ray, Color flux, int32_t medium, bool 
     if (!found) return;
     if (Scene::is_medium_boundary(hit)) {  // not a bounce: the photon goes on in the other medium
       if (++crossings > 256) return;
-      medium = hit.media->entered(ray.dir, hit.n);
-      ray = Scene::continued(ray, hit);
+      Scene::cross(hit, ray, medium);
       continue;
     }
     const Vec3 wo = -ray.dir;

@@ -19,6 +19,9 @@ struct PhotonPassSettings {
   // In media: the caustic emission stores only the first scattering point of L S+ V paths (the
   // volume caustic map), and counts those towards caustic_photons.
   bool caustic_volume_only = false;
+  // In media: the global photons' first scattering point straight from a light is stored too
+  // (photon-direct takes single scattering from the map; `photon` and sppm by shadow rays).
+  bool volume_direct = false;
   // In media, a pass stops once its volume photons number this times global_photons.
   static constexpr size_t kVolumeShare = 8;
   // In media, once the global map is full the emission goes on for volume photons alone until

@@ -1,6 +1,7 @@
 // The steps every eye path (path, photon, sppm) takes alike: meeting a surface with the
 // emission found there, and continuing by a BSDF sample.
 #pragma once
+#include "core/media/medium.h"
 #include "core/sampler.h"
 #include "core/scene.h"
 #include "trace/direct.h"
@@ -31,6 +32,46 @@ struct EyePath {
     }
     if (visible) L += beta * emission_mis(scene, hit, scene.emitted(hit, hit.frame.to_local(-ray.dir)), from);
     return depth < max_depth;
+  }
+
+  // In scenes with media (path's and sppm's eye paths): the channel free flights track and the
+  // densities of the path's medium events per channel; the throughput under spectral MIS over
+  // the path is throughput(), beta and r kept divided by r[hero] (take_medium_event).
+  int hero = 0;
+  Color r{1.0f};
+  Color throughput() const { return hero_throughput(beta, r); }
+
+  // In scenes with media: follows ray from eye vertex `depth` through `medium` (updated as it
+  // crosses null boundaries, which are no vertices) to the next vertex, by a free flight in each
+  // medium. kScattered: the flight scattered at ray.at(t) (with ray the segment it did so on);
+  // kSurface: hit is a surface's, its emission added as meet() adds it; kEnd: the path ends (it
+  // left the scene, nothing passed, depth is max_depth at a surface, or 256 boundaries crossed).
+  enum class Step { kEnd, kScattered, kSurface };
+  Step advance(const Scene& scene, Ray& ray, int32_t& medium, int depth, Sampler& sampler, SurfaceHit& hit, float& t) {
+    const bool visible = !(hide_emitters && depth == 0);
+    for (int crossings = 0; crossings < 256; ++crossings) {
+      ++sampler.rays;
+      const bool found = scene.intersect(ray, hit);
+      if (medium >= 0) {
+        const MediumEvent event = scene.media[size_t(medium)]->sample(ray, found ? hit.t : kInfinity, hero, sampler);
+        if (!take_medium_event(event, hero, beta, r)) return Step::kEnd;
+        if (event.scattered) {
+          t = event.t;
+          return Step::kScattered;
+        }
+      }
+      if (!found) {
+        if (visible) L += throughput() * escaped_mis(scene, ray.dir, from);
+        return Step::kEnd;
+      }
+      if (Scene::is_medium_boundary(hit)) {
+        Scene::cross(hit, ray, medium);
+        continue;
+      }
+      if (visible) L += throughput() * emission_mis(scene, hit, scene.emitted(hit, hit.frame.to_local(-ray.dir)), from);
+      return depth < max_depth ? Step::kSurface : Step::kEnd;
+    }
+    return Step::kEnd;
   }
 
   // Samples the BSDF at `hit` towards the next vertex; false when the path ends.

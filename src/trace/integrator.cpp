@@ -21,7 +21,7 @@ const std::vector<IntegratorPlugin>& integrator_plugins() {
         "alpha", "path_fallback", "final_gather", "volume_k", "volume_radius", "volume_boundary"}},
       {"photon-direct", PhotonIntegrator::create_direct,
        {"photons", "caustic_photons", "global_k", "caustic_k", "global_radius", "caustic_radius", "glossy_threshold",
-        "hide_emitters", "progressive", "alpha"}},
+        "hide_emitters", "progressive", "alpha", "volume_k", "volume_radius", "volume_boundary"}},
       {"sppm", SppmIntegrator::create, {"photons", "radius", "alpha", "glossy_threshold", "hide_emitters"}},
       {"whitted", WhittedIntegrator::create, {}},
   };

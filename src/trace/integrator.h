@@ -53,8 +53,6 @@ class Integrator {
   // Capabilities, asked instead of testing names or types.
   // Whether Li() fills the sampler's AOVs (photon count and gather radius: --aov).
   virtual bool supports_aov() const { return false; }
-  // Whether Li() renders participating media (Scene::media): fog, smoke, volumetric caustics.
-  virtual bool supports_media() const { return false; }
   // The photon maps after preprocess, for pictures of them; null where there are none.
   virtual const PhotonMap* global_map() const { return nullptr; }
   virtual const PhotonMap* caustic_map() const { return nullptr; }

@@ -37,62 +37,44 @@ Color trace_path(const Ray& camera_ray, const Scene& scene, Sampler& sampler, co
 }
 
 Color trace_volume_path(const Ray& camera_ray, const Scene& scene, Sampler& sampler, const MonteCarloSettings& settings) {
-  // The path's throughput under spectral MIS over the whole path: hero_throughput(beta, r), r
-  // per channel the medium events' densities.
+  // The path's throughput under spectral MIS over the whole path: EyePath::throughput().
   EyePath path{Color(0.0f), Color(1.0f), BsdfVertex{}, settings.max_depth, settings.hide_emitters, true};
   Color& L = path.L;
   Color& beta = path.beta;
-  Color r(1.0f);
-  auto throughput = [&] { return hero_throughput(beta, r); };
-  const int hero = std::min(int(sampler.next1d() * 3.0f), 2);
+  path.hero = std::min(int(sampler.next1d() * 3.0f), 2);
   int32_t medium = scene.camera_medium;
   Ray ray = camera_ray;
   int depth = 0;
   // Russian roulette after rr_depth vertices, as trace_path.
   auto survives = [&] {
     if (depth < settings.rr_depth) return true;
-    const float survive = std::min(1.0f, max_component(throughput()));
+    const float survive = std::min(1.0f, max_component(path.throughput()));
     if (survive <= 0.0f || sampler.next1d() >= survive) return false;
     beta /= survive;
     return true;
   };
-  // (Bounded: a ray crossing boundaries without end, e.g. along a degenerate seam, stops.)
+  // (Bounded: a path crossing null lobes without end stops.)
   for (int segment = 0; segment < 4 * (settings.max_depth + 1) + 256; ++segment) {
     SurfaceHit hit;
-    ++sampler.rays;
-    const bool found = scene.intersect(ray, hit);
-    if (medium >= 0) {
-      const MediumEvent event = scene.media[size_t(medium)]->sample(ray, found ? hit.t : kInfinity, hero, sampler);
-      if (!take_medium_event(event, hero, beta, r)) break;
-      if (event.scattered) {
-        // A medium vertex: direct light by a shadow ray, the path on by the phase function.
-        if (depth >= settings.max_depth) break;
-        const Vec3 p = ray.at(event.t), wo = -ray.dir;
-        L += throughput() * estimate_direct_in_medium(scene, p, wo, medium, sampler, 1.0f);
-        Vec3 wi;
-        const float pdf = scene.media[size_t(medium)]->phase().sample(wo, sampler.next2d(), wi);
-        if (!(pdf > 0.0f)) break;  // (the weight f / pdf is 1)
-        path.from = BsdfVertex{false, pdf, p, Vec3(0.0f)};
-        ray = Ray{p, wi, kInfinity};
-        ++depth;
-        if (!survives()) break;
-        continue;
-      }
-    }
-    const bool visible = !(settings.hide_emitters && depth == 0);
-    if (!found) {
-      if (visible) L += throughput() * escaped_mis(scene, ray.dir, path.from);
-      break;
-    }
-    if (Scene::is_medium_boundary(hit)) {  // not a vertex: the ray goes on in the other medium
-      medium = hit.media->entered(ray.dir, hit.n);
-      ray = Scene::continued(ray, hit);
+    float t = 0.0f;
+    const EyePath::Step step = path.advance(scene, ray, medium, depth, sampler, hit, t);
+    if (step == EyePath::Step::kEnd) break;
+    if (step == EyePath::Step::kScattered) {
+      // A medium vertex: direct light by a shadow ray, the path on by the phase function.
+      if (depth >= settings.max_depth) break;
+      const Vec3 p = ray.at(t), wo = -ray.dir;
+      L += path.throughput() * estimate_direct_in_medium(scene, p, wo, medium, sampler, 1.0f);
+      Vec3 wi;
+      const float pdf = scene.media[size_t(medium)]->phase().sample(wo, sampler.next2d(), wi);
+      if (!(pdf > 0.0f)) break;  // (the weight f / pdf is 1)
+      path.from = BsdfVertex{false, pdf, p, Vec3(0.0f)};
+      ray = Ray{p, wi, kInfinity};
+      ++depth;
+      if (!survives()) break;
       continue;
     }
-    if (visible) L += throughput() * emission_mis(scene, hit, scene.emitted(hit, hit.frame.to_local(-ray.dir)), path.from);
-    if (depth >= settings.max_depth) break;
     const Vec3 wo = -ray.dir;
-    if (!hit.material->is_specular()) L += throughput() * estimate_direct(scene, hit, wo, sampler, 1.0f, medium);
+    if (!hit.material->is_specular()) L += path.throughput() * estimate_direct(scene, hit, wo, sampler, 1.0f, medium);
     if (!path.scatter(hit, wo, sampler, ray)) break;
     if (hit.media) medium = hit.media->entered(ray.dir, hit.n);
     // A null lobe (straight through a thindielectric) is not a vertex, as Mitsuba's volpath counts.

@@ -24,7 +24,6 @@ class PathIntegrator final : public Integrator {
   Color Li(const Ray& ray, const Scene& scene, Sampler& sampler) const override;
   std::string name() const override { return "path"; }
   std::string describe() const override;
-  bool supports_media() const override { return true; }
 
  private:
   PathSettings settings_;

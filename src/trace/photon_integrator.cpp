@@ -274,6 +274,7 @@ bool PhotonIntegrator::build_maps(const Scene& scene, uint64_t seed, const Prepr
   pass.global_photons = settings_.photons;
   pass.caustic_photons = final_gather_ ? settings_.caustic_photons : 0;
   pass.caustic_volume_only = media_;
+  pass.volume_direct = media_ && !final_gather_;
   pass.max_depth = settings_.max_depth;
   pass.glossy_threshold = settings_.glossy_threshold;
   pass.caustic_threshold = final_gather_ ? settings_.caustic_threshold : pass.caustic_threshold;

@@ -156,7 +156,6 @@ class PhotonIntegrator final : public Integrator {
   bool supports_aov() const override { return true; }
   const PhotonMap* global_map() const override { return &global_; }
   const PhotonMap* caustic_map() const override { return &caustic_; }
-  bool supports_media() const override { return final_gather_; }
   std::vector<const PhotonMap*> volume_maps() const override {
     if (!media_) return {};
     return {&volume_.photons(), &volume_caustic_.photons()};
@@ -262,11 +261,12 @@ class PhotonIntegrator final : public Integrator {
   // gather point (no final gathering, no surface caustic map: the global map holds caustics),
   // shadow rays through the media, and along every segment through a medium the beam radiance
   // estimate of the volume maps (the light scattered once more than the photons had) beside a
-  // shadow ray from one point of it (single scattering).
+  // shadow ray from one point of it (single scattering). photon-direct: no shadow rays, the
+  // maps' photons straight from the lights too (PhotonPassSettings::volume_direct).
   bool media_ = false;
   Color trace_media_eye(const Ray& ray, const Scene& scene, Sampler& sampler) const;
   // The in-scattered radiance towards -ray.dir along [0, tmax] of ray in `medium` from eye
-  // vertex `depth`: volume photons of one bounce or more projecting onto it, each weighted by
+  // vertex `depth`: volume photons of one bounce or more (photon-direct: of any) projecting onto it, each weighted by
   // `weight(t)` (the transmittance to it); `segment_end` (>= tmax) ends the medium's segment,
   // where a photon's kernel is cut off. `open_start`: the ray starts inside the medium (at the
   // camera), not at a surface, and the photons just behind it whose balls reach it count too.

@@ -3,6 +3,7 @@
 // every photon, shrinking pass by pass as progressive photon mapping's (Jarosz et al. 2011 show
 // the beam estimate converges so); single scattering is a shadow ray from one point of the
 // segment, surfaces as in the global map's estimate mode (shadow rays, the global map).
+// photon-direct: single scattering and the surfaces' direct light from the maps too.
 #include "core/media/homogeneous.h"
 #include "photon/gather.h"
 #include "trace/eye_path.h"
@@ -17,8 +18,10 @@ thread_local FlightRecord tls_flight;
 template <class W>
 Color PhotonIntegrator::beam_estimate(const Ray& ray, float tmax, float segment_end, bool open_start,
                                       const Scene& scene, int32_t medium, int depth, W&& weight) const {
+  // (photon-direct: the photons straight from a light too, in place of single scattering.)
+  const int min_bounces = final_gather_ ? 1 : 0;
   const int max_bounces = settings_.max_depth - 1 - depth;
-  if (max_bounces < 1) return Color(0.0f);
+  if (max_bounces < min_bounces) return Color(0.0f);
   const Vec3 wo = -ray.dir;
   const PhaseFunction& phase = scene.media[size_t(medium)]->phase();
   Color sum(0.0f);
@@ -33,7 +36,7 @@ Color PhotonIntegrator::beam_estimate(const Ray& ray, float tmax, float segment_
       const Photon& p = map.photons()[i];
       // (Only this medium's photons: a neighbouring medium's, or one behind a wall, lie within
       // the radius too.)
-      if (p.bounces < 1 || p.bounces > max_bounces || photon_medium(p) != medium) return;
+      if (p.bounces < min_bounces || p.bounces > max_bounces || photon_medium(p) != medium) return;
       if (skip_caustic_paths && is_caustic_path(p)) return;
       const float half = std::sqrt(std::max(0.0f, r2 - d2));
       const float chord = std::min(t + half, segment_end) - std::max(t - half, 0.0f);
@@ -70,7 +73,7 @@ Color PhotonIntegrator::trace_media_eye(const Ray& camera_ray, const Scene& scen
         // with it, single scattering from a point sampled equiangularly towards a light's.
         if (!is_black(sigma_s)) {
           L += beta * beam_estimate(ray, s, s, segment == 0, scene, medium, depth, [&](float t) { return beer_lambert(sigma_t, t); });
-          if (depth < settings_.max_depth) {
+          if (depth < settings_.max_depth && final_gather_) {
             const Light* end_light = found && hit.light >= 0 ? scene.lights[size_t(hit.light)].get() : nullptr;
             L += beta * single_scattering(scene, ray, s, medium, sigma_t, sigma_s, sampler, end_light);
           }
@@ -96,7 +99,7 @@ Color PhotonIntegrator::trace_media_eye(const Ray& camera_ray, const Scene& scen
         const float pdf = average(event.pdf);
         if (!(event.pdf[hero] > 0.0f) || !(pdf > 0.0f)) break;
         if (event.scattered) {
-          if (depth < settings_.max_depth)
+          if (depth < settings_.max_depth && final_gather_)
             L += beta * event.weight / pdf * estimate_direct_in_medium(scene, ray.at(event.t), wo, medium, sampler, 0.0f);
           break;
         }
@@ -110,8 +113,7 @@ Color PhotonIntegrator::trace_media_eye(const Ray& camera_ray, const Scene& scen
       break;
     }
     if (Scene::is_medium_boundary(hit)) {  // not a vertex: the ray goes on in the other medium
-      medium = hit.media->entered(ray.dir, hit.n);
-      ray = Scene::continued(ray, hit);
+      Scene::cross(hit, ray, medium);
       continue;
     }
     if (visible) L += beta * emission_mis(scene, hit, scene.emitted(hit, hit.frame.to_local(-ray.dir)), path.from);
@@ -127,7 +129,11 @@ Color PhotonIntegrator::trace_media_eye(const Ray& camera_ray, const Scene& scen
         sampler.aov[3] = volume_radius();  // (no surface caustic map in media)
       }
       // Direct light by shadow rays through the media, the rest from the global map (its
-      // photons of one bounce or more, caustics included).
+      // photons of one bounce or more, caustics included); photon-direct: all from the map.
+      if (!final_gather_) {
+        L += beta * radiance_estimate(global_, hit, wo, at_depth(global_est_, depth), scratch);
+        break;
+      }
       const int nd = settings_.direct_samples;
       const StratifiedDirect lights(sampler, nd);
       Color direct(0.0f);

@@ -14,7 +14,13 @@ class WhittedIntegrator final : public Integrator {
   std::string describe() const override;
 
  private:
-  Color trace(const Ray& ray, const Scene& scene, Sampler& sampler, int depth) const;
+  // The radiance along ray from eye vertex `depth` (0: the camera's), starting in `medium`.
+  Color trace(Ray ray, const Scene& scene, Sampler& sampler, int depth, int32_t medium) const;
+  // The segment [0, s) of ray through `medium` (ending on `end`, if any): adds the light
+  // scattered once towards the eye to L (times beta) and takes beta on to the segment's end.
+  // False when the path ends there (it scattered in a grid medium, or nothing passes).
+  bool through_medium(const Ray& ray, float s, const SurfaceHit* end, const Scene& scene, int32_t medium,
+                      Sampler& sampler, int depth, Color& L, Color& beta) const;
   int max_depth_;
 };
 

@@ -200,6 +200,22 @@ TEST_CASE("sppm pixel: add_pass follows N' = N + alpha M, r' = r sqrt(N' / (N + 
   CHECK(q.n == Approx(25.0));
   CHECK(q.radius == Approx(0.5f).epsilon(1e-6));
   CHECK(q.tau.y == Approx(0.25).epsilon(1e-6));
+
+  // In a medium (photons in a ball): r' = r cbrt(N' / (N + M)), and tau, radiance times pi r^2,
+  // scales with the radius's square. N = 25 from 100 photons: r = cbrt(1/4), tau = 4^(-2/3).
+  SppmPixel v;
+  v.radius = 1.0f;
+  v.add_pass(100, Color(1.0f, 2.0f, 0.0f), 0.25f, 3);
+  CHECK(v.n == Approx(25.0));
+  CHECK(v.radius == Approx(std::cbrt(0.25)).epsilon(1e-6));
+  CHECK(v.tau.x == Approx(std::pow(0.25, 2.0 / 3.0)).epsilon(1e-6));
+  CHECK(v.tau.y == Approx(2.0 * std::pow(0.25, 2.0 / 3.0)).epsilon(1e-6));
+  // Each pass's phi is its radiance times pi r^2 at its radius: tau / (pi r^2) stays the sum of
+  // the passes' radiances whatever the radius became.
+  const double r1 = v.radius;
+  v.add_pass(30, Color(float(kPi * r1 * r1) * 0.5f), 0.25f, 3);  // a radiance of 0.5
+  CHECK(v.radius < r1);
+  CHECK(v.tau.x / (double(kPi) * double(v.radius) * double(v.radius)) == Approx(1.0 / kPi + 0.5).epsilon(1e-5));
 }
 
 // ---- Consistency: the error keeps falling as passes are added -------------------------------

@@ -12,6 +12,15 @@ HeterogeneousMedium::HeterogeneousMedium(std::unique_ptr<Volume> sigma_t, std::u
       majorant_(sigma_t_->max_value() * scale),
       phase_(std::move(phase)) {}
 
+namespace {
+// 1 in each channel without extinction, 0 in the others.
+Color no_extinction(const Color& sigma) {
+  return Color(sigma.x > 0.0f ? 0.0f : 1.0f, sigma.y > 0.0f ? 0.0f : 1.0f, sigma.z > 0.0f ? 0.0f : 1.0f);
+}
+}  // namespace
+
+Color HeterogeneousMedium::sigma_s(const Vec3& p) const { return sigma_t_->eval(p) * scale_ * albedo_->eval(p); }
+
 bool HeterogeneousMedium::clip(const Ray& ray, float tmax, float& t0, float& t1) const {
   t0 = 0.0f;
   t1 = tmax;
@@ -35,6 +44,14 @@ MediumEvent HeterogeneousMedium::sample(const Ray& ray, float tmax, int channel,
   e.t = tmax;
   float t0, t1;
   if (!clip(ray, tmax, t0, t1)) return e;
+  // An unbounded constant volume along a ray to infinity, a channel of no extinction tracked:
+  // no collision ever comes. Each channel's chance of none is 1 where it has no extinction, 0
+  // where it has some (the products of null collisions' chances to infinity).
+  const bool chromatic = sigma_t_->channels() != 1;
+  if (chromatic && !std::isfinite(t1) && !(sigma_t_->eval(ray.origin)[channel] > 0.0f)) {
+    e.weight = e.pdf = no_extinction(sigma_t_->eval(ray.origin));
+    return e;
+  }
   // Delta tracking: tentative collisions at the majorant's rate, each real with probability
   // sigma_t / majorant in the hero channel; a real one scatters with the albedo as weight
   // (absorption ends the path in expectation). With one channel of extinction every channel's
@@ -42,7 +59,6 @@ MediumEvent HeterogeneousMedium::sample(const Ray& ray, float tmax, int channel,
   // decisions is the product of its chances of them (1 - sigma_c / majorant at each null
   // collision, sigma_c / majorant at the real one; the majorant's exponentials are shared and
   // cancel), and the weight that product times the albedo (spectral MIS over the path).
-  const bool chromatic = sigma_t_->channels() != 1;
   Color nulls(1.0f);  // per channel, the product of the null collisions' chances
   for (float t = t0;;) {
     t -= std::log1p(-sampler.next1d()) / majorant_;
@@ -78,6 +94,9 @@ MediumEvent HeterogeneousMedium::sample(const Ray& ray, float tmax, int channel,
 Color HeterogeneousMedium::transmittance(const Ray& ray, float tmax, Sampler& sampler) const {
   float t0, t1;
   if (!clip(ray, tmax, t0, t1)) return Color(1.0f);
+  // An unbounded constant volume to infinity: a channel with extinction keeps nothing, one
+  // without keeps all (ratio tracking would never end).
+  if (!std::isfinite(t1)) return no_extinction(sigma_t_->eval(ray.origin));
   // Ratio tracking: per channel, the product of each tentative collision's chance of being a
   // null one.
   Color tr(1.0f);

@@ -18,6 +18,7 @@ class HeterogeneousMedium final : public Medium {
                      FlightRecord* record = nullptr) const override;
   Color transmittance(const Ray& ray, float tmax, Sampler& sampler) const override;
   const PhaseFunction& phase() const override { return *phase_; }
+  Color sigma_s(const Vec3& p) const override;
   static std::unique_ptr<Medium> create(const Params& p);
 
  private:

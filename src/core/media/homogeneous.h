@@ -19,6 +19,7 @@ class HomogeneousMedium final : public Medium {
   }
   const Color& sigma_t() const { return sigma_t_; }
   const Color& sigma_s() const { return sigma_s_; }
+  Color sigma_s(const Vec3&) const override { return sigma_s_; }
   static std::unique_ptr<Medium> create(const Params& p);
 
  private:

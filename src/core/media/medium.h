@@ -77,6 +77,8 @@ class Medium {
   // Transmittance over [0, tmax] (an unbiased estimate where the medium is not homogeneous).
   virtual Color transmittance(const Ray& ray, float tmax, Sampler& sampler) const = 0;
   virtual const PhaseFunction& phase() const = 0;
+  // The scattering coefficient at p (0 where the medium is empty).
+  virtual Color sigma_s(const Vec3& p) const = 0;
   // Whether the medium is the same everywhere; then its coefficients (transmittance analytic).
   virtual bool homogeneous(Color& sigma_t, Color& sigma_s) const {
     (void)sigma_t, (void)sigma_s;
