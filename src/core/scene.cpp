@@ -68,25 +68,31 @@ bool Scene::occluded(const Ray& ray) const {
   return intersect(ray, hit);
 }
 
-Color Scene::transmittance(const Ray& ray_in, int32_t medium, Sampler& sampler) const {
-  if (!has_media()) return occluded(ray_in) ? Color(0.0f) : Color(1.0f);
+Color Scene::transmittance(const Ray& ray, int32_t medium, Sampler& sampler) const {
+  if (!has_media()) return occluded(ray) ? Color(0.0f) : Color(1.0f);
+  Color tr;
+  SurfaceHit hit;
+  return walk(ray, medium, sampler, tr, hit) ? Color(0.0f) : tr;
+}
+
+bool Scene::walk(const Ray& ray_in, int32_t medium, Sampler& sampler, Color& tr, SurfaceHit& hit) const {
   Ray ray = ray_in;
-  Color tr(1.0f);
+  tr = Color(1.0f);
   for (int crossing = 0; crossing < 256; ++crossing) {
-    SurfaceHit hit;
     const bool found = intersect(ray, hit);
     if (medium >= 0) tr *= media[size_t(medium)]->transmittance(ray, found ? hit.t : ray.tmax, sampler);
-    if (!found) return tr;
+    if (!found) return false;
     // (A null lobe, thindielectric's, lets the ray through with its weight, as in Mitsuba's
     // volpath; its surface may or may not bound a medium.)
-    if (!passes_straight(hit)) return Color(0.0f);
+    if (!passes_straight(hit)) return true;
     if (!is_medium_boundary(hit)) tr *= hit.material->null_transmission(hit.frame.to_local(-ray.dir), hit.sp);
-    if (is_black(tr)) return Color(0.0f);
+    if (is_black(tr)) break;
     if (hit.media) medium = hit.media->entered(ray.dir, hit.n);
     ray = continued(ray, hit);
-    if (!(ray.tmax > 0.0f)) return tr;
+    if (!(ray.tmax > 0.0f)) return false;
   }
-  return Color(0.0f);
+  tr = Color(0.0f);
+  return false;
 }
 
 int32_t Scene::medium_at(const Vec3& p, const Vec3& dir) const {

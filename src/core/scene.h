@@ -88,6 +88,10 @@ class Scene {
   // at its null_transmission); zero at any other surface. Without media, 0 or 1 as occluded()
   // says (Mitsuba's path stops at a thindielectric, its volpath passes it).
   Color transmittance(const Ray& ray, int32_t medium, Sampler& sampler) const;
+  // The walk transmittance() takes (in a scene with media): true at the first surface within
+  // ray.tmax that does not let the ray straight through (hit; tr the transmittance to it);
+  // false where the ray ends or leaves the scene first (tr to there), or nothing passes (tr 0).
+  bool walk(const Ray& ray, int32_t medium, Sampler& sampler, Color& tr, SurfaceHit& hit) const;
   // The medium at point p (-1: none): the near side of the first surface bounding media that a
   // ray from p along dir meets; where none is met, outside_medium(). Light sources use it for
   // the medium their photons start in.

@@ -82,6 +82,23 @@ Color estimate_direct_in_medium(const Scene& scene, const Vec3& p, const Vec3& w
   return tr * ls.weight * (f * w / pmf);
 }
 
+Color direct_in_medium_mis(const Scene& scene, const Vec3& p, const Vec3& wo, int32_t medium, Sampler& sampler) {
+  Color L = estimate_direct_in_medium(scene, p, wo, medium, sampler, 1.0f);
+  Vec3 wi;
+  const float pdf = scene.media[size_t(medium)]->phase().sample(wo, sampler.next2d(), wi);
+  if (!(pdf > 0.0f)) return L;  // (the sample's weight f / pdf is 1)
+  const BsdfVertex from{false, pdf, p, Vec3(0.0f)};
+  SurfaceHit hit;
+  Color tr;
+  ++sampler.rays;
+  if (scene.walk(Ray{p, wi, kInfinity}, medium, sampler, tr, hit)) {
+    if (hit.light >= 0) L += tr * emission_mis(scene, hit, scene.emitted(hit, hit.frame.to_local(-wi)), from);
+  } else if (!is_black(tr)) {
+    L += tr * escaped_mis(scene, wi, from);
+  }
+  return L;
+}
+
 namespace {
 // The part [ta, tb] of [0, tmax] of ray inside the cone {x : angle(x - apex, axis) <= acos(cos_theta)}
 // (cos_theta > 0: one nappe, convex, so the part is one interval); false when empty.
@@ -162,21 +179,17 @@ Color area_light_at(const Scene& scene, const Light& light, const Vec3& x, const
   Vec3 wi;
   const float f = phase.sample(wo, u_phase, wi);
   if (!(f > 0.0f)) return L;
-  Ray r{x, wi, kInfinity};
+  // The phase sample: the first surface it meets past the media's boundaries, with the
+  // transmittance to it (one walk: Scene::walk).
   SurfaceHit hit;
-  bool found = false;
-  for (int crossing = 0; crossing < 32; ++crossing) {
-    ++sampler.rays;
-    found = scene.intersect(r, hit);
-    if (!found || !Scene::passes_straight(hit)) break;  // (what scene.transmittance passes)
-    r = Scene::continued(r, hit);
-  }
-  if (!found || hit.light < 0 || scene.lights[size_t(hit.light)].get() != &light) return L;
-  const Color Le = scene.emitted(hit, hit.frame.to_local(-wi));
-  if (is_black(Le)) return L;
-  const float pdf_light = light.pdf_li(x, hit.p, hit.n);
+  Color tr;
   ++sampler.rays;
-  const Color tr = scene.transmittance(spawn_ray_to(x, Vec3(0.0f), hit.p, hit.n), medium, sampler);
+  if (!scene.walk(Ray{x, wi, kInfinity}, medium, sampler, tr, hit) || hit.light < 0 ||
+      scene.lights[size_t(hit.light)].get() != &light)
+    return L;
+  const Color Le = scene.emitted(hit, hit.frame.to_local(-wi));
+  if (is_black(Le) || is_black(tr)) return L;
+  const float pdf_light = light.pdf_li(x, hit.p, hit.n);
   return L + tr * Le * mis_weight(f, pdf_light);  // (the phase sample's weight f / f is 1)
 }
 }  // namespace

@@ -21,6 +21,12 @@ Color estimate_direct(const Scene& scene, const SurfaceHit& hit, const Vec3& wo,
 Color estimate_direct_in_medium(const Scene& scene, const Vec3& p, const Vec3& wo, int32_t medium, Sampler& sampler,
                                 float mis_ratio);
 
+// The same by both strategies under MIS (power heuristic): a light sample (mis_ratio 1) and a
+// phase sample whose walk through the media (Scene::walk) reaches an emitter or leaves the
+// scene. For a point where a path ends (sppm's visible point, a flight's end in `photon` and
+// `whitted`): bounded where p nears a light, where the light sample alone (cos / d^2 over an
+// area density, of infinite variance in fog beneath a lamp) is not.
+Color direct_in_medium_mis(const Scene& scene, const Vec3& p, const Vec3& wo, int32_t medium, Sampler& sampler);
 // Single scattering towards -ray.dir along [0, tmax] (tmax may be infinite) of ray inside a
 // homogeneous medium (sigma_t, sigma_s, its phase function): the integral of Tr(t) sigma_s
 // times the light scattered at t, by one light (chosen by power or uniformly, half the time

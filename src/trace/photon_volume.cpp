@@ -100,7 +100,7 @@ Color PhotonIntegrator::trace_media_eye(const Ray& camera_ray, const Scene& scen
         if (!(event.pdf[hero] > 0.0f) || !(pdf > 0.0f)) break;
         if (event.scattered) {
           if (depth < settings_.max_depth && final_gather_)
-            L += beta * event.weight / pdf * estimate_direct_in_medium(scene, ray.at(event.t), wo, medium, sampler, 0.0f);
+            L += beta * event.weight / pdf * direct_in_medium_mis(scene, ray.at(event.t), wo, medium, sampler);
           break;
         }
         beta *= event.weight / pdf;

@@ -101,7 +101,7 @@ Color SppmIntegrator::Li(const Ray& camera_ray, const Scene& scene, Sampler& sam
       // The visible point in the medium: direct light by a shadow ray, the volume photons.
       if (depth >= max_depth) break;
       const Vec3 p = ray.at(t), wo = -ray.dir;
-      L += path.throughput() * estimate_direct_in_medium(scene, p, wo, medium, sampler, 0.0f);
+      L += path.throughput() * direct_in_medium_mis(scene, p, wo, medium, sampler);
       gather_volume(scene, p, wo, medium, depth, path.throughput(), sampler);
       break;
     }

@@ -35,7 +35,7 @@ bool WhittedIntegrator::through_medium(const Ray& ray, float s, const SurfaceHit
   if (!(event.pdf[hero] > 0.0f) || !(pdf > 0.0f)) return false;
   if (event.scattered) {
     if (depth < max_depth_)
-      L += beta * event.weight / pdf * estimate_direct_in_medium(scene, ray.at(event.t), -ray.dir, medium, sampler, 0.0f);
+      L += beta * event.weight / pdf * direct_in_medium_mis(scene, ray.at(event.t), -ray.dir, medium, sampler);
     return false;
   }
   beta *= event.weight / pdf;
