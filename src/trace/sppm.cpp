@@ -6,6 +6,7 @@
 #include <sstream>
 #include "photon/gather.h"
 #include "photon/photon_tracer.h"
+#include "photon/volume_boundary.h"
 #include "trace/eye_path.h"
 
 namespace caustica {
@@ -190,7 +191,17 @@ void SppmIntegrator::gather_volume(const Scene& scene, const Vec3& p, const Vec3
     ++m;
   }
   const float r = px.radius;
-  Color estimate = sum * volume_.photons().flux_scale() / (4.0f / 3.0f * kPi * r * r * r);
+  // The ball's volume in this medium and on p's side of surfaces, not the whole ball's: beside a
+  // wall or the medium's bounds the photons fill only that part (the kernel renormalised at a
+  // boundary, as `photon` does per photon; here per visible point, its radius being the pixel's).
+  float fraction = 1.0f;
+  if (m > 0) {
+    uint64_t rays = 0;
+    fraction = std::max(medium_ball_fraction(scene, p, medium, r, kBoundaryDirections, sampler.rng, rays),
+                        1.0f / kMaxBoundaryWeight);
+    sampler.rays += rays;
+  }
+  Color estimate = sum * volume_.photons().flux_scale() / (4.0f / 3.0f * kPi * r * r * r * fraction);
   for (int c = 0; c < 3; ++c) estimate[c] = sigma_s[c] > 0.0f ? estimate[c] / sigma_s[c] : 0.0f;
   const Color phi = sampler.filter_weight * throughput * estimate * (kPi * r * r);
   if (is_finite(phi)) px.add_pass(m, phi, settings_.alpha, 3);
