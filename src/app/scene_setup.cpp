@@ -80,7 +80,7 @@ std::unique_ptr<Integrator> integrator_for(const LoadedScene& loaded, const std:
     const std::string flag = integrator_flag(kv.first);
     // A flag applies to the integrators whose registry row lists its key.
     const IntegratorPlugin* row = find_integrator_plugin(type);
-    const bool applies = row && std::find(row->keys.begin(), row->keys.end(), kv.first) != row->keys.end();
+    const bool applies = row && row->reads(kv.first);
     if (!applies) {
       if (lenient) continue;
       throw InputError(flag + " does not apply to integrator \"" + type + "\"");

@@ -23,15 +23,12 @@ struct EyePath {
   // the emission it finds, MIS-weighted against the previous vertex's shadow ray. False when the
   // path ends: the ray left the scene, or depth is max_depth. A path then has at most
   // max_depth + 1 segments, the last only for the emission it reaches (Mitsuba's max_depth).
+  // For scenes without media: advance() with no medium.
   bool meet(const Scene& scene, const Ray& ray, int depth, Sampler& sampler, SurfaceHit& hit) {
-    ++sampler.rays;
-    const bool visible = !(hide_emitters && depth == 0);
-    if (!scene.intersect(ray, hit)) {
-      if (visible) L += beta * escaped_mis(scene, ray.dir, from);
-      return false;
-    }
-    if (visible) L += beta * emission_mis(scene, hit, scene.emitted(hit, hit.frame.to_local(-ray.dir)), from);
-    return depth < max_depth;
+    Ray r = ray;
+    int32_t medium = -1;  // (a scene without media: advance() meets the first surface)
+    float t = 0.0f;
+    return advance(scene, r, medium, depth, sampler, hit, t) == Step::kSurface;
   }
 
   // In scenes with media (path's and sppm's eye paths): the channel free flights track and the

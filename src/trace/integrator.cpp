@@ -81,7 +81,7 @@ std::string integrator_flag(const std::string& key) {
 std::string integrators_reading(const std::string& key) {
   std::string out;
   for (const IntegratorPlugin& p : integrator_plugins()) {
-    if (std::find(p.keys.begin(), p.keys.end(), key) != p.keys.end()) out += (out.empty() ? "" : ", ") + std::string(p.name);
+    if (p.reads(key)) out += (out.empty() ? "" : ", ") + std::string(p.name);
   }
   return out;
 }

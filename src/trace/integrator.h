@@ -2,6 +2,7 @@
 // registry table: each integrator by name with the settings keys it reads. The command line's
 // per-integrator flags and their "applies to" rules come from that table.
 #pragma once
+#include <algorithm>
 #include <atomic>
 #include <memory>
 #include <string>
@@ -75,6 +76,8 @@ struct IntegratorPlugin {
   const char* name;
   std::unique_ptr<Integrator> (*create)(const Params&, const RenderSettings&);
   std::vector<const char*> keys;
+  // Whether the row lists `key`.
+  bool reads(const std::string& key) const { return std::find(keys.begin(), keys.end(), key) != keys.end(); }
 };
 const std::vector<IntegratorPlugin>& integrator_plugins();
 const IntegratorPlugin* find_integrator_plugin(const std::string& name);

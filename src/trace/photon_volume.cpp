@@ -96,8 +96,8 @@ Color PhotonIntegrator::trace_media_eye(const Ray& camera_ray, const Scene& scen
           L += beta * beam_estimate(ray, end, s, segment == 0, scene, medium, depth, [&](float t) { return flight.at(t); });
         // (The hero is chosen afresh for each flight: one-sample MIS over the channels, the
         // weight over the mean of the densities, as the flight record's.)
-        const float pdf = average(event.pdf);
-        if (!(event.pdf[hero] > 0.0f) || !(pdf > 0.0f)) break;
+        const float pdf = event.flight_pdf(hero);
+        if (!(pdf > 0.0f)) break;
         if (event.scattered) {
           if (depth < settings_.max_depth && final_gather_)
             L += beta * event.weight / pdf * direct_in_medium_mis(scene, ray.at(event.t), wo, medium, sampler);

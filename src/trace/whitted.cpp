@@ -31,8 +31,8 @@ bool WhittedIntegrator::through_medium(const Ray& ray, float s, const SurfaceHit
   // ends) or passes; one-sample MIS over the tracked channel, chosen afresh per flight.
   const int hero = std::min(int(sampler.next1d() * 3.0f), 2);
   const MediumEvent event = med.sample(ray, s, hero, sampler);
-  const float pdf = average(event.pdf);
-  if (!(event.pdf[hero] > 0.0f) || !(pdf > 0.0f)) return false;
+  const float pdf = event.flight_pdf(hero);
+  if (!(pdf > 0.0f)) return false;
   if (event.scattered) {
     if (depth < max_depth_)
       L += beta * event.weight / pdf * direct_in_medium_mis(scene, ray.at(event.t), -ray.dir, medium, sampler);

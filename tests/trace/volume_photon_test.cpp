@@ -231,7 +231,7 @@ TEST_CASE("media: a camera ray leaving the scene inside a medium sees the enviro
       "lights": [{"type": "constant", "radiance": 1}]})";
     for (const IntegratorPlugin& plugin : integrator_plugins()) {
       INFO(plugin.name << (grid ? " in a constant grid" : " in a homogeneous medium"));
-      const bool photons = std::find(plugin.keys.begin(), plugin.keys.end(), std::string("photons")) != plugin.keys.end();
+      const bool photons = plugin.reads("photons");
       const Color mean = render_text(scene, plugin.name, photons ? R"({"photons": 1000})" : "{}", grid ? 64 : 2, 8, 8).image.mean();
       const double tolerance = grid ? 0.05 : 1e-4;
       CHECK(mean.x == Approx(1.0f).epsilon(tolerance));

@@ -119,7 +119,7 @@ TEST_CASE("media: every integrator reads camera rays through an absorbing slab a
     INFO(plugin.name);
     // (Few photons: from a light in a black world they all escape, and a pass emits 50 times as
     // many as it wants, and a million more, before it gives up.)
-    const bool photons = std::find(plugin.keys.begin(), plugin.keys.end(), std::string("photons")) != plugin.keys.end();
+    const bool photons = plugin.reads("photons");
     if (photons && test::kSanitized) continue;  // (a million photons a pass: the Release suite's)
     const Color mean = render_text(kSlab, plugin.name, photons ? R"({"photons": 100})" : "{}", 4, 8, 8).image.mean();
     for (int c = 0; c < 3; ++c) CHECK(mean[c] == Approx(std::exp(-2.0 * sigma[c])).epsilon(0.001));

@@ -48,9 +48,12 @@ MediumEvent HeterogeneousMedium::sample(const Ray& ray, float tmax, int channel,
   // no collision ever comes. Each channel's chance of none is 1 where it has no extinction, 0
   // where it has some (the products of null collisions' chances to infinity).
   const bool chromatic = sigma_t_->channels() != 1;
-  if (chromatic && !std::isfinite(t1) && !(sigma_t_->eval(ray.origin)[channel] > 0.0f)) {
-    e.weight = e.pdf = no_extinction(sigma_t_->eval(ray.origin));
-    return e;
+  if (chromatic && !std::isfinite(t1)) {
+    const Color sigma = sigma_t_->eval(ray.origin);
+    if (!(sigma[channel] > 0.0f)) {
+      e.weight = e.pdf = no_extinction(sigma);
+      return e;
+    }
   }
   // Delta tracking: tentative collisions at the majorant's rate, each real with probability
   // sigma_t / majorant in the hero channel; a real one scatters with the albedo as weight

@@ -26,6 +26,10 @@ struct MediumEvent {
   // Per channel, the density of this event had that channel been the one sampled: sigma_t *
   // Tr(t) (scattered), Tr(tmax) (passed); 1 for events every channel takes alike.
   Color pdf{1.0f};
+  // The event's density under one-sample MIS over the tracked channel, chosen uniformly for
+  // this flight alone (balance heuristic: the mean of the channels'); 0 where the tracked
+  // channel's own is, which ends the path.
+  float flight_pdf(int hero) const { return pdf[hero] > 0.0f ? average(pdf) : 0.0f; }
 };
 
 // The null collisions of a chromatic free flight, for estimates taken all along it (the beam
