@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Builds everything with AddressSanitizer + UndefinedBehaviorSanitizer into ./build-sanitize
-# and runs the whole test suite under it. This build casts rays through our own BVH
+# and runs the test suite under it. This build casts rays through our own BVH
 # (CAUSTICA_EMBREE=OFF) and has no MPI (CAUSTICA_MPI=OFF), so that CI builds and tests both ways:
 # the README's test command builds with Embree and MPI (and runs the mpirun tests). It also reads
 # no OpenVDB files (CAUSTICA_OPENVDB=OFF): OpenVDB is not ours to sanitize, our reader hands it a
@@ -8,8 +8,10 @@
 # .vdb tests and their fuzz cases; the sanitized suite checks the error such a build gives. The
 # Python module is left out too (CAUSTICA_PYTHON=OFF): an ASan library cannot be loaded into an
 # interpreter that was not started with it, and the module only converts what the suite tests.
-# Statistical render comparisons that would take minutes under ASan (tests/support/run.h's
-# kSanitized) render a little and check what a sanitizer checks; the README's suite checks their figures.
+# Every tier runs: unit and process as in Release, and the figure tier reduced (this build defines
+# CAUSTICA_FIGURES_REDUCED, tests/support/tiers.h): its renders cut down to two samples a pixel
+# and 20000 photons, so that the code is exercised, and its figures reported without failing;
+# the README's suite holds them to their figures.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh chromium

@@ -1,5 +1,6 @@
 // The caustica executable end to end: renders, overrides, and bad input that must fail cleanly.
 #include <catch2/catch.hpp>
+#include "support/tiers.h"
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -22,7 +23,7 @@ const std::string kTiny = std::string(CAUSTICA_SOURCE_DIR) + "/tests/data/tiny.j
 
 }  // namespace
 
-TEST_CASE("cli: renders a tiny scene to PNG and EXR", "[app]") {
+TEST_CASE("cli: renders a tiny scene to PNG and EXR", "[app]" TIER_PROCESS) {
   test::TempDir dir;
   auto r = run_caustica("render '" + kTiny + "' -o out.png --quiet", dir);
   REQUIRE(r.exit_code == 0);
@@ -40,7 +41,7 @@ TEST_CASE("cli: renders a tiny scene to PNG and EXR", "[app]") {
   CHECK(r.out.find("rays per second") != std::string::npos);
 }
 
-TEST_CASE("cli: --version and --help", "[app]") {
+TEST_CASE("cli: --version and --help", "[app]" TIER_PROCESS) {
   test::TempDir dir;
   auto r = run_caustica("--version", dir);
   CHECK(r.exit_code == 0);
@@ -50,7 +51,7 @@ TEST_CASE("cli: --version and --help", "[app]") {
   CHECK(r.out.find("--spp") != std::string::npos);
 }
 
-TEST_CASE("cli: bad input exits non-zero with a located message and writes no image", "[app]") {
+TEST_CASE("cli: bad input exits non-zero with a located message and writes no image", "[app]" TIER_PROCESS) {
   test::TempDir dir;
   dir.write("good.json", test::kLitFloorScene);
   struct Case {
@@ -175,7 +176,7 @@ TEST_CASE("cli: bad input exits non-zero with a located message and writes no im
   }
 }
 
-TEST_CASE("cli: a scene scaled up to the coordinate bound renders as it does at scale 1, on both backends", "[app]") {
+TEST_CASE("cli: a scene scaled up to the coordinate bound renders as it does at scale 1, on both backends", "[app]" TIER_PROCESS) {
   // A diffuse floor and sphere under a directional light: their radiance does not depend on the
   // scene's scale. At 2.5e8 the camera stands at 7.5e8 and the floor reaches 5e8 (the bound is
   // 1e9); before the bound existed, 1e17 dropped the floor as "degenerate" and 2e18 aborted Embree.
@@ -216,7 +217,7 @@ TEST_CASE("cli: a scene scaled up to the coordinate bound renders as it does at 
   }
 }
 
-TEST_CASE("cli: under a memory limit, large allocations are refused with what they need", "[app]") {
+TEST_CASE("cli: under a memory limit, large allocations are refused with what they need", "[app]" TIER_PROCESS) {
   // Issue 23: these ended in "internal error: std::bad_alloc" (exit 2).
   if (!test::kAddressSpaceLimits) {
     WARN("skipped: ulimit -v cannot be used under AddressSanitizer");
@@ -240,7 +241,7 @@ TEST_CASE("cli: under a memory limit, large allocations are refused with what th
   CHECK(r.exit_code == 0);
 }
 
-TEST_CASE("cli: compare refuses an image that declares more pixels than it holds, a folder and a device", "[app]") {
+TEST_CASE("cli: compare refuses an image that declares more pixels than it holds, a folder and a device", "[app]" TIER_PROCESS) {
   test::TempDir dir;
   dir.write("big.pfm", "PF\n100000 100000\n-1.0\n" + std::string(1200, '\0'));
   Image ref(4, 2);
@@ -259,7 +260,7 @@ TEST_CASE("cli: compare refuses an image that declares more pixels than it holds
   CHECK(r.err == "error: nothing.pfm: image file not found\n");
 }
 
-TEST_CASE("cli: compare refuses images with NaN or infinite pixels", "[app]") {
+TEST_CASE("cli: compare refuses images with NaN or infinite pixels", "[app]" TIER_PROCESS) {
   test::TempDir dir;
   Image ref(4, 2), img(4, 2);
   for (Color& c : ref.pixels) c = Color(0.5f);
@@ -285,7 +286,7 @@ TEST_CASE("cli: compare refuses images with NaN or infinite pixels", "[app]") {
   CHECK(r.exit_code == 0);
 }
 
-TEST_CASE("cli: an unknown command and an empty list of integrators are named as such", "[app]") {
+TEST_CASE("cli: an unknown command and an empty list of integrators are named as such", "[app]" TIER_PROCESS) {
   // Issue 23: both were answered with what they were not ("A subcommand is required", "--time is required").
   test::TempDir dir;
   auto r = run_caustica("frobnicate", dir);
@@ -301,7 +302,7 @@ TEST_CASE("cli: an unknown command and an empty list of integrators are named as
   CHECK_FALSE(fs::exists(dir.file("out")));
 }
 
-TEST_CASE("cli: an environment map brighter than a scene may emit is refused", "[app]") {
+TEST_CASE("cli: an environment map brighter than a scene may emit is refused", "[app]" TIER_PROCESS) {
   // Issue 23: an environment map of 3e38 rendered all black, with exit 0.
   test::TempDir dir;
   Image env(4, 2);
@@ -323,7 +324,7 @@ TEST_CASE("cli: an environment map brighter than a scene may emit is refused", "
   CHECK(r.exit_code == 0);
 }
 
-TEST_CASE("cli: sampling_weight moves samples between lights, not the image's mean", "[app]") {
+TEST_CASE("cli: sampling_weight moves samples between lights, not the image's mean", "[app]" TIER_PROCESS) {
   // Issue 24: chosen in proportion to power times weight, each estimate divided by the choice's
   // probability: the same expectation in path and photon.
   test::TempDir dir;
@@ -352,7 +353,7 @@ TEST_CASE("cli: sampling_weight moves samples between lights, not the image's me
   }
 }
 
-TEST_CASE("cli: a missing scene file and a folder as scene", "[app]") {
+TEST_CASE("cli: a missing scene file and a folder as scene", "[app]" TIER_PROCESS) {
   test::TempDir dir;
   auto r = run_caustica("render nothing.json -o out.png", dir);
   CHECK(r.exit_code == 1);
@@ -362,7 +363,7 @@ TEST_CASE("cli: a missing scene file and a folder as scene", "[app]") {
   CHECK(r.err.find("is a directory") != std::string::npos);
 }
 
-TEST_CASE("cli: compare prints the figures, as JSON too, and writes an error map", "[app]") {
+TEST_CASE("cli: compare prints the figures, as JSON too, and writes an error map", "[app]" TIER_PROCESS) {
   test::TempDir dir;
   Image ref(8, 8), img(8, 8);
   for (Color& c : ref.pixels) c = Color(0.5f);
@@ -387,7 +388,7 @@ TEST_CASE("cli: compare prints the figures, as JSON too, and writes an error map
   CHECK(r.err.find("missing.exr") != std::string::npos);
 }
 
-TEST_CASE("cli: compare against several references reports their floor and subtracts it", "[app]") {
+TEST_CASE("cli: compare against several references reports their floor and subtracts it", "[app]" TIER_PROCESS) {
   // Two references 0.4 and 0.6 (mean 0.5) and an image at 0.6: against the mean the error is
   // 0.1 per value; the references' spread says their mean is 0.1 off too (sample variance
   // 0.02, over 2), so the image's error without the floor is 0.
@@ -426,7 +427,7 @@ TEST_CASE("cli: compare against several references reports their floor and subtr
   CHECK(r.err.find("reference sizes differ: small.exr is 4x8, a.exr is 8x8") != std::string::npos);
 }
 
-TEST_CASE("cli: warnings (degenerate triangle, albedo above 1) still render", "[app]") {
+TEST_CASE("cli: warnings (degenerate triangle, albedo above 1) still render", "[app]" TIER_PROCESS) {
   test::TempDir dir;
   std::string text(test::kLitFloorScene);
   text.replace(text.find("\"albedo\": [0.7, 0.7, 0.7]"), 25, "\"albedo\": [1.2, 0.7, 0.7]");
@@ -441,7 +442,7 @@ TEST_CASE("cli: warnings (degenerate triangle, albedo above 1) still render", "[
   CHECK(fs::exists(dir.file("out.png")));
 }
 
-TEST_CASE("cli: a signal during the photon pass stops it at once and writes no image", "[app][interrupt]") {
+TEST_CASE("cli: a signal during the photon pass stops it at once and writes no image", "[app][interrupt]" TIER_PROCESS) {
   // The pass used to go on normalising and indexing the photons traced so far (seconds for
   // millions) before the render noticed the stop.
   test::TempDir dir;
@@ -468,7 +469,7 @@ TEST_CASE("cli: a signal during the photon pass stops it at once and writes no i
   CHECK(test::temporaries(dir.path()).empty());
 }
 
-TEST_CASE("cli: output names too long to write are refused before the render, AOV names too", "[app]") {
+TEST_CASE("cli: output names too long to write are refused before the render, AOV names too", "[app]" TIER_PROCESS) {
   test::TempDir dir;
   const std::string scene = std::string(CAUSTICA_SOURCE_DIR) + "/scenes/cornell-box.json";
   const std::string small = " --width 16 --height 16 --spp 2", photons = " --photons 2000 --caustic-photons 2000";
@@ -491,7 +492,7 @@ TEST_CASE("cli: output names too long to write are refused before the render, AO
   CHECK(r.out.find("photons:") == std::string::npos);
 }
 
-TEST_CASE("cli: a signal while a file is written waits for it: the file complete, no temporary, exit 128 + signal", "[app][interrupt]") {
+TEST_CASE("cli: a signal while a file is written waits for it: the file complete, no temporary, exit 128 + signal", "[app][interrupt]" TIER_PROCESS) {
   // The signal is raised right after each output's temporary is made (a test hook in
   // io/atomic_file.cpp), the moment that killed photons and compare before: they left the
   // temporary and no file.
@@ -527,7 +528,7 @@ TEST_CASE("cli: a signal while a file is written waits for it: the file complete
   }
 }
 
-TEST_CASE("cli: an unreadable scene file is a clear error", "[app]") {
+TEST_CASE("cli: an unreadable scene file is a clear error", "[app]" TIER_PROCESS) {
   test::TempDir dir;
   const std::string path = dir.write("locked.json", test::kLitFloorScene);
   fs::permissions(path, fs::perms::none);
@@ -545,7 +546,7 @@ TEST_CASE("cli: an unreadable scene file is a clear error", "[app]") {
   CHECK(r.err.find("cannot open the scene file") != std::string::npos);
 }
 
-TEST_CASE("cli: Ctrl-C or SIGTERM stops a render within a second and keeps the completed passes", "[app][interrupt]") {
+TEST_CASE("cli: Ctrl-C or SIGTERM stops a render within a second and keeps the completed passes", "[app][interrupt]" TIER_PROCESS) {
   // SIGTERM is what batch schedulers (Slurm) send at a job's time limit: handled as Ctrl-C.
   for (const auto& [signal, code] : {std::pair<std::string, int>{"INT", 130}, std::pair<std::string, int>{"TERM", 143}}) {
     INFO("SIG" << signal);

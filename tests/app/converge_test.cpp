@@ -1,5 +1,6 @@
 // `caustica converge`: checkpoints, the CSV, and a short end-to-end run.
 #include <catch2/catch.hpp>
+#include "support/tiers.h"
 #include <chrono>
 #include <filesystem>
 #include <sstream>
@@ -22,19 +23,19 @@ void render_reference(const test::TempDir& dir, int spp) {
 }
 }  // namespace
 
-TEST_CASE("converge: default checkpoints are powers of two up to the budget", "[app][converge]") {
+TEST_CASE("converge: default checkpoints are powers of two up to the budget", "[app][converge]" TIER_UNIT) {
   CHECK(default_checkpoints(10) == std::vector<double>{1, 2, 4, 8, 10});
   CHECK(default_checkpoints(8) == std::vector<double>{1, 2, 4, 8});
   CHECK(default_checkpoints(0.5) == std::vector<double>{0.5});
 }
 
-TEST_CASE("converge: the CSV has a header and one line per row", "[app][converge]") {
+TEST_CASE("converge: the CSV has a header and one line per row", "[app][converge]" TIER_UNIT) {
   const std::vector<ConvergeRow> rows = {{"photon", 1.5, 3, 0.25, 0.125}, {"path", 2, 40, 0.5, 0.0625}};
   const std::string csv = convergence_csv(rows);
   CHECK(csv == "integrator,seconds,passes,rmse,relmse\nphoton,1.5,3,0.25,0.125\npath,2,40,0.5,0.0625\n");
 }
 
-TEST_CASE("converge: a short run writes the CSV, images, error maps and the report", "[app][converge]") {
+TEST_CASE("converge: a short run writes the CSV, images, error maps and the report", "[app][converge]" TIER_PROCESS) {
   test::TempDir dir;
   render_reference(dir, 64);
   test::RunResult r = test::run_caustica("converge '" + kTiny + "' --reference ref.exr --integrators path,photon --time 1.5 "
@@ -88,7 +89,7 @@ TEST_CASE("converge: a short run writes the CSV, images, error maps and the repo
   CHECK(photon_rows <= 3);
 }
 
-TEST_CASE("converge: the CSV has a floor-free column when the reference is several renders", "[app][converge]") {
+TEST_CASE("converge: the CSV has a floor-free column when the reference is several renders", "[app][converge]" TIER_UNIT) {
   const std::vector<ConvergeRow> rows = {{"photon", 1.5, 3, 0.25, 0.125}, {"path", 2, 40, 0.5, 0.0625}};
   CHECK(convergence_csv(rows).find("floor") == std::string::npos);
   CHECK(convergence_csv(rows, 0.025) ==
@@ -96,7 +97,7 @@ TEST_CASE("converge: the CSV has a floor-free column when the reference is sever
         "path,2,40,0.5,0.0625,0.0375\n");
 }
 
-TEST_CASE("converge: two references give the floor and the error without it", "[app][converge]") {
+TEST_CASE("converge: two references give the floor and the error without it", "[app][converge]" TIER_PROCESS) {
   test::TempDir dir;
   for (const char* seed : {"1", "2"}) {
     auto r = test::run_caustica("render '" + kTiny + "' --spp 16 --seed " + seed + " -o ref" + seed + ".exr -q", dir);
@@ -134,7 +135,7 @@ TEST_CASE("converge: two references give the floor and the error without it", "[
   CHECK(html.find("mean of ref1.exr, ref2.exr") != std::string::npos);
 }
 
-TEST_CASE("converge: bad input is a clear error", "[app][converge]") {
+TEST_CASE("converge: bad input is a clear error", "[app][converge]" TIER_PROCESS) {
   test::TempDir dir;
   write_image(dir.file("small.exr"), Image(8, 8));
   auto r = test::run_caustica("converge '" + kTiny + "' --reference small.exr --integrators path --time 1 --width 16 --out o", dir);
@@ -145,7 +146,7 @@ TEST_CASE("converge: bad input is a clear error", "[app][converge]") {
   CHECK(r.err.find("unknown integrator \"pathx\"") != std::string::npos);
 }
 
-TEST_CASE("converge: Ctrl-C or SIGTERM ends the run with the figures so far written", "[app][converge][interrupt]") {
+TEST_CASE("converge: Ctrl-C or SIGTERM ends the run with the figures so far written", "[app][converge][interrupt]" TIER_PROCESS) {
   // Issue 23: converge had no handler, so a signal killed it and its report was lost.
   for (const auto& [signal, code] : {std::pair<std::string, int>{"INT", 130}, std::pair<std::string, int>{"TERM", 143}}) {
     INFO("SIG" << signal);
@@ -173,7 +174,7 @@ TEST_CASE("converge: Ctrl-C or SIGTERM ends the run with the figures so far writ
   }
 }
 
-TEST_CASE("converge: variants of an integrator pass the name check", "[app][converge]") {
+TEST_CASE("converge: variants of an integrator pass the name check", "[app][converge]" TIER_PROCESS) {
   // --integrators checks the name before any ':' (the settings after it are checked when the
   // integrator is made): photon:photons=2000 is photon with 2000 photons.
   test::TempDir dir;

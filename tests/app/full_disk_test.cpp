@@ -2,6 +2,7 @@
 // (issue 23). Where mounting is not allowed (not root, no CAP_SYS_ADMIN) the tests say so and
 // skip; tests/io/atomic_file_test.cpp simulates the same with RLIMIT_FSIZE everywhere.
 #include <catch2/catch.hpp>
+#include "support/tiers.h"
 #include <cstdlib>
 #include <filesystem>
 #include <set>
@@ -55,7 +56,7 @@ class SmallDisk {
 
 }  // namespace
 
-TEST_CASE("full disk: every image format fails with exit 1 and keeps the image that was there", "[app][full_disk]") {
+TEST_CASE("full disk: every image format fails with exit 1 and keeps the image that was there", "[app][full_disk]" TIER_PROCESS) {
   test::TempDir dir;
   SmallDisk disk(dir, 256);
   REQUIRE_MOUNTED(disk);
@@ -79,7 +80,7 @@ TEST_CASE("full disk: every image format fails with exit 1 and keeps the image t
   }
 }
 
-TEST_CASE("full disk: compare --diff, the photons' PLY and an image with its AOVs fail whole", "[app][full_disk]") {
+TEST_CASE("full disk: compare --diff, the photons' PLY and an image with its AOVs fail whole", "[app][full_disk]" TIER_PROCESS) {
   test::TempDir dir;
   SmallDisk disk(dir, 256);
   REQUIRE_MOUNTED(disk);

@@ -1,6 +1,7 @@
 // The integrator registry drives the command line: every settings key is a flag, and a flag
 // applies to exactly the integrators whose row lists its key.
 #include <catch2/catch.hpp>
+#include "support/tiers.h"
 #include <algorithm>
 #include "app/scene_setup.h"
 #include "support/errors.h"
@@ -8,7 +9,7 @@
 
 using namespace caustica;
 
-TEST_CASE("integrators: a flag applies exactly to the integrators whose registry row lists its key", "[app][registry]") {
+TEST_CASE("integrators: a flag applies exactly to the integrators whose registry row lists its key", "[app][registry]" TIER_UNIT) {
   SceneOptions options;
   options.scene = std::string(CAUSTICA_SOURCE_DIR) + "/tests/data/tiny.json";
   options.quiet = true;
@@ -45,7 +46,7 @@ TEST_CASE("integrators: a flag applies exactly to the integrators whose registry
   }
 }
 
-TEST_CASE("integrators: the docs name every registered integrator", "[app][registry]") {
+TEST_CASE("integrators: the docs name every registered integrator", "[app][registry]" TIER_UNIT) {
   const std::string format = test::read_text(std::string(CAUSTICA_SOURCE_DIR) + "/docs/scene-format.md");
   for (const IntegratorPlugin& row : integrator_plugins()) {
     INFO(row.name);

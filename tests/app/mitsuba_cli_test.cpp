@@ -1,5 +1,6 @@
 // The command line on Mitsuba scenes: -D, --ignore-unsupported, and --accel.
 #include <catch2/catch.hpp>
+#include "support/tiers.h"
 #include "core/accel.h"
 #include "io/image_io.h"
 #include "support/run.h"
@@ -36,7 +37,7 @@ std::string scene_with(const std::string& extra) {
 
 }  // namespace
 
-TEST_CASE("cli: a Mitsuba scene renders with -D parameters, and a bad -D is an error", "[app][mitsuba]") {
+TEST_CASE("cli: a Mitsuba scene renders with -D parameters, and a bad -D is an error", "[app][mitsuba]" TIER_PROCESS) {
   test::TempDir dir;
   dir.write("scene.xml", scene_with(""));
   const test::RunResult r = test::run_caustica("render scene.xml -D spp=2 -D res=16 -o out.exr", dir);
@@ -52,7 +53,7 @@ TEST_CASE("cli: a Mitsuba scene renders with -D parameters, and a bad -D is an e
   CHECK(bad.err.find("-D spp: expected name=value") != std::string::npos);
 }
 
-TEST_CASE("cli: an unsupported plugin fails naming the line, and --ignore-unsupported skips it", "[app][mitsuba]") {
+TEST_CASE("cli: an unsupported plugin fails naming the line, and --ignore-unsupported skips it", "[app][mitsuba]" TIER_PROCESS) {
   test::TempDir dir;
   dir.write("scene.xml", scene_with(R"(<shape type="ellipsoids"/>)"));
   const test::RunResult r = test::run_caustica("render scene.xml -D spp=1 -o out.exr", dir);
@@ -68,7 +69,7 @@ TEST_CASE("cli: an unsupported plugin fails naming the line, and --ignore-unsupp
   CHECK(std::filesystem::exists(dir.file("out.exr")));
 }
 
-TEST_CASE("cli: --accel bvh and embree render the same scene alike and name the backend", "[app][accel]") {
+TEST_CASE("cli: --accel bvh and embree render the same scene alike and name the backend", "[app][accel]" TIER_PROCESS) {
   test::TempDir dir;
   dir.write("scene.xml", scene_with(""));
   const test::RunResult a = test::run_caustica("render scene.xml --accel bvh -o bvh.exr", dir);
@@ -90,7 +91,7 @@ TEST_CASE("cli: --accel bvh and embree render the same scene alike and name the 
   CHECK(bad.exit_code != 0);
 }
 
-TEST_CASE("cli: a scene's unknown integrator is not interpreted when the command line names one", "[app][mitsuba]") {
+TEST_CASE("cli: a scene's unknown integrator is not interpreted when the command line names one", "[app][mitsuba]" TIER_PROCESS) {
   // Issue 24: 8 public scenes (bdpt, irrcache, guided_path, ...) stopped here even with --integrator.
   test::TempDir dir;
   dir.write("bdpt.xml", scene_with(R"(<integrator type="bdpt"><integer name="max_depth" value="3"/>

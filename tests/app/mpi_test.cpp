@@ -2,6 +2,7 @@
 // bit for bit, and a failing rank fails the run without an image. Skipped, with a message, when
 // this build has no MPI or mpirun is not installed (scripts/setup.sh installs it).
 #include <catch2/catch.hpp>
+#include "support/tiers.h"
 #include <algorithm>
 #include <chrono>
 #include <cstdlib>
@@ -40,7 +41,7 @@ int passes_reported(const std::string& out) {
 
 }  // namespace
 
-TEST_CASE("mpi: two ranks render the one-process image of the same passes, bit for bit", "[app][mpi]") {
+TEST_CASE("mpi: two ranks render the one-process image of the same passes, bit for bit", "[app][mpi]" TIER_PROCESS) {
   if (!mpi_available()) return;
   test::TempDir dir;
   // 5 passes: rank 0 renders 0, 2, 4 and rank 1 renders 1, 3. Progressive photon passes trace
@@ -66,7 +67,7 @@ TEST_CASE("mpi: two ranks render the one-process image of the same passes, bit f
   }
 }
 
-TEST_CASE("mpi: --time stops all ranks after the same round, and the image is that many passes'", "[app][mpi]") {
+TEST_CASE("mpi: --time stops all ranks after the same round, and the image is that many passes'", "[app][mpi]" TIER_PROCESS) {
   if (!mpi_available()) return;
   test::TempDir dir;
   const std::string base = "render '" + scene_path() + "' --width 24 --height 24 --threads 1 --integrator path ";
@@ -83,7 +84,7 @@ TEST_CASE("mpi: --time stops all ranks after the same round, and the image is th
   CHECK(test::read_text(dir.file("alone.pfm")) == test::read_text(dir.file("ranks.pfm")));
 }
 
-TEST_CASE("mpi: a rank that fails ends the run with its error and no image", "[app][mpi]") {
+TEST_CASE("mpi: a rank that fails ends the run with its error and no image", "[app][mpi]" TIER_PROCESS) {
   if (!mpi_available()) return;
   test::TempDir dir;
   dir.write("bad.json", "{\"camera\": {\"position\": [0, 1, 3], \"look_at\": [0, 1, 0]},\n  \"objects\": [\n");
@@ -140,7 +141,7 @@ TEST_CASE("mpi: a rank that fails ends the run with its error and no image", "[a
   }
 }
 
-TEST_CASE("mpi: SIGTERM (a scheduler's time limit) writes the passes completed by all ranks", "[app][mpi]") {
+TEST_CASE("mpi: SIGTERM (a scheduler's time limit) writes the passes completed by all ranks", "[app][mpi]" TIER_PROCESS) {
   if (!mpi_available()) return;
   test::TempDir dir;
   const std::string args =
@@ -172,7 +173,7 @@ TEST_CASE("mpi: SIGTERM (a scheduler's time limit) writes the passes completed b
   CHECK(image.size() > 32 * 32 * 12);
 }
 
-TEST_CASE("mpi: a build without MPI started by mpirun says that each process renders alone", "[app][mpi]") {
+TEST_CASE("mpi: a build without MPI started by mpirun says that each process renders alone", "[app][mpi]" TIER_PROCESS) {
   if (Cluster::built_with_mpi() || std::system("command -v mpirun >/dev/null 2>&1") != 0) {
     WARN("skipped: for builds without MPI (CAUSTICA_MPI off) on a machine with mpirun");
     return;
@@ -185,7 +186,7 @@ TEST_CASE("mpi: a build without MPI started by mpirun says that each process ren
   CHECK(r.err.find("built without MPI") != std::string::npos);
 }
 
-TEST_CASE("mpi: converge on two ranks records whole rounds of passes and writes its report", "[app][mpi]") {
+TEST_CASE("mpi: converge on two ranks records whole rounds of passes and writes its report", "[app][mpi]" TIER_PROCESS) {
   if (!mpi_available()) return;
   test::TempDir dir;
   dir.write("scene.json", test::kLitFloorScene);

@@ -1,5 +1,6 @@
 // `caustica photons` (PNG splats, heat map, PLY point cloud) and `render --aov`.
 #include <catch2/catch.hpp>
+#include "support/tiers.h"
 #include <cstring>
 #include <filesystem>
 #include "io/image_io.h"
@@ -12,7 +13,7 @@ namespace {
 const std::string kTiny = std::string(CAUSTICA_SOURCE_DIR) + "/tests/data/tiny.json";
 }
 
-TEST_CASE("photons: a PLY point cloud with one vertex per photon", "[app][photons]") {
+TEST_CASE("photons: a PLY point cloud with one vertex per photon", "[app][photons]" TIER_PROCESS) {
   test::TempDir dir;
   const auto r = test::run_caustica("photons '" + kTiny + "' --photons 3000 --map global -o maps.ply", dir);
   INFO(r.err);
@@ -35,7 +36,7 @@ TEST_CASE("photons: a PLY point cloud with one vertex per photon", "[app][photon
   }
 }
 
-TEST_CASE("photons: PNG splats and heat map show photons over the dimmed scene", "[app][photons]") {
+TEST_CASE("photons: PNG splats and heat map show photons over the dimmed scene", "[app][photons]" TIER_PROCESS) {
   test::TempDir dir;
   auto r = test::run_caustica("photons '" + kTiny + "' --photons 20000 -o maps.png", dir);
   INFO(r.err);
@@ -53,7 +54,7 @@ TEST_CASE("photons: PNG splats and heat map show photons over the dimmed scene",
   CHECK(r.err.find("must be .png or .ply") != std::string::npos);
 }
 
-TEST_CASE("render --aov: photon counts and radii beside the image", "[app][photons]") {
+TEST_CASE("render --aov: photon counts and radii beside the image", "[app][photons]" TIER_PROCESS) {
   test::TempDir dir;
   const auto r = test::run_caustica("render '" + kTiny + "' --integrator photon --photons 20000 --gather-rays 4 "
                                     "--spp 2 --aov -o out.exr -q",

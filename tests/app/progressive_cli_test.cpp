@@ -1,5 +1,6 @@
 // The command line of progressive photon mapping and sppm: flags, integrator specs, renders.
 #include <catch2/catch.hpp>
+#include "support/tiers.h"
 #include <filesystem>
 #include "io/image_io.h"
 #include "support/run.h"
@@ -9,7 +10,7 @@ using test::run_caustica;
 namespace fs = std::filesystem;
 
 TEST_CASE("cli: progressive and sppm flags that conflict or do not apply fail with a message and no image",
-          "[app][progressive]") {
+          "[app][progressive]" TIER_PROCESS) {
   test::TempDir dir;
   dir.write("scene.json", test::kLitFloorScene);
   struct Case {
@@ -37,7 +38,7 @@ TEST_CASE("cli: progressive and sppm flags that conflict or do not apply fail wi
   }
 }
 
-TEST_CASE("cli: --integrator sppm and photon --progressive render valid images", "[app][progressive]") {
+TEST_CASE("cli: --integrator sppm and photon --progressive render valid images", "[app][progressive]" TIER_PROCESS) {
   test::TempDir dir;
   dir.write("scene.json", test::kLitFloorScene);
   auto r = run_caustica("render scene.json -o sppm.exr --integrator sppm --photons 5000 --spp 4 --threads 2", dir);

@@ -1,6 +1,7 @@
 // The HTML report: a self-contained page (embedded PNGs, escaped text, no network) that loads
 // without script errors in headless Chromium when it is installed.
 #include <catch2/catch.hpp>
+#include "support/tiers.h"
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -73,7 +74,7 @@ int run(const std::string& command) { return std::system(("timeout 60 " + comman
 
 }  // namespace
 
-TEST_CASE("report: a self-contained page with every image embedded", "[app][report]") {
+TEST_CASE("report: a self-contained page with every image embedded", "[app][report]" TIER_UNIT) {
   test::TempDir dir;
   const ReportData data = sample_report(dir);
   write_report(dir.path().string(), data);
@@ -109,7 +110,7 @@ TEST_CASE("report: a self-contained page with every image embedded", "[app][repo
   }
 }
 
-TEST_CASE("report: a missing image or folder is an input error naming it", "[app][report]") {
+TEST_CASE("report: a missing image or folder is an input error naming it", "[app][report]" TIER_UNIT) {
   test::TempDir dir;
   ReportData data = sample_report(dir);
   data.images.push_back({"lost", "missing.png"});
@@ -126,7 +127,7 @@ TEST_CASE("report: a missing image or folder is an input error naming it", "[app
   CHECK_THROWS_WITH(write_report(nowhere, ReportData{}), Catch::Contains("no-such-folder"));
 }
 
-TEST_CASE("report: loads without errors in headless Chromium", "[app][report]") {
+TEST_CASE("report: loads without errors in headless Chromium", "[app][report]" TIER_PROCESS) {
   // scripts/test.sh installs Chromium, so a missing browser is a failure, not a silent skip.
   // CAUSTICA_NO_BROWSER=1 opts out explicitly (a developer machine without a browser).
   if (std::getenv("CAUSTICA_NO_BROWSER") != nullptr) {
@@ -168,7 +169,7 @@ TEST_CASE("report: loads without errors in headless Chromium", "[app][report]") 
   CHECK(sum2 / double(image.pixels.size()) - mean * mean > 1e-3);
 }
 
-TEST_CASE("report: the convergence slope is the late log-log slope of relMSE against time", "[app][report]") {
+TEST_CASE("report: the convergence slope is the late log-log slope of relMSE against time", "[app][report]" TIER_UNIT) {
   ReportSeries noise{"noise", {}}, floor{"floor", {}}, mixed{"mixed", {}}, short_run{"short", {}};
   for (double t = 1; t <= 64; t *= 2) {
     noise.points.push_back({t, 0.1 / t, 0, 1});

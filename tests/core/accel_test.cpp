@@ -1,5 +1,6 @@
 // The ray-casting backends agree: Embree against our BVH (the oracle) on random scenes and rays.
 #include <catch2/catch.hpp>
+#include "support/tiers.h"
 #include "core/accel.h"
 #include "core/bvh.h"
 #include "io/json_reader.h"
@@ -35,7 +36,7 @@ Ray random_ray(Rng& rng) {
 }  // namespace
 
 #ifdef CAUSTICA_EMBREE
-TEST_CASE("accel: Embree finds the hits and primitives our BVH finds on random scenes", "[accel]") {
+TEST_CASE("accel: Embree finds the hits and primitives our BVH finds on random scenes", "[accel]" TIER_UNIT) {
   Rng rng(20261123);
   size_t hits = 0, rays = 0;
   for (int scene = 0; scene < 6; ++scene) {
@@ -74,7 +75,7 @@ TEST_CASE("accel: Embree finds the hits and primitives our BVH finds on random s
   CHECK(hits < rays * 9 / 10);
 }
 
-TEST_CASE("accel: a sphere seen from inside and a ray starting on a surface are found by both backends", "[accel]") {
+TEST_CASE("accel: a sphere seen from inside and a ray starting on a surface are found by both backends", "[accel]" TIER_UNIT) {
   std::vector<Primitive> prims = {Primitive::sphere(Vec3(0.0f), 2.0f),
                                   Primitive::triangle(Vec3(-1, -1, 0.5f), Vec3(1, -1, 0.5f), Vec3(0, 1, 0.5f))};
   for (AccelKind kind : {AccelKind::Bvh, AccelKind::Embree}) {
@@ -93,14 +94,14 @@ TEST_CASE("accel: a sphere seen from inside and a ray starting on a surface are 
   }
 }
 #else
-TEST_CASE("accel: our BVH is the backend when Embree is not built", "[accel]") {
+TEST_CASE("accel: our BVH is the backend when Embree is not built", "[accel]" TIER_UNIT) {
   REQUIRE_FALSE(embree_available());
   REQUIRE(default_accel() == AccelKind::Bvh);
   CHECK_THROWS_AS(make_accelerator(AccelKind::Embree, {Primitive::sphere(Vec3(0.0f), 1.0f)}), InputError);
 }
 #endif
 
-TEST_CASE("accel: --accel and the scene key choose the backend", "[accel]") {
+TEST_CASE("accel: --accel and the scene key choose the backend", "[accel]" TIER_UNIT) {
   AccelKind kind;
   CHECK(parse_accel("bvh", kind));
   CHECK(kind == AccelKind::Bvh);

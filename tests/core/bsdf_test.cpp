@@ -4,6 +4,7 @@
 // lossless materials), eval is reciprocal, the microfacet distributions are normalised, the
 // Fresnel terms agree with independent formulas, and the smooth limits (thin glass, metal).
 #include <catch2/catch.hpp>
+#include "support/tiers.h"
 #include <cmath>
 #include <cstring>
 #include <functional>
@@ -244,7 +245,7 @@ const char* name(MicrofacetType t) { return t == MicrofacetType::GGX ? "GGX" : "
 
 // ---- 1-3. Sampling against pdf (chi-square), weights, energy ---------------------------------
 
-TEST_CASE("RoughConductor: samples follow pdf, weights are f cos / pdf, mean weight is the albedo", "[core][bsdf]") {
+TEST_CASE("RoughConductor: samples follow pdf, weights are f cos / pdf, mean weight is the albedo", "[core][bsdf]" TIER_UNIT) {
   ConductorIor gold;
   REQUIRE(lookup_conductor("Au", gold));
   struct Alpha {
@@ -272,7 +273,7 @@ TEST_CASE("RoughConductor: samples follow pdf, weights are f cos / pdf, mean wei
   }
 }
 
-TEST_CASE("RoughDielectric: reflection and transmission follow pdf from both sides, weights and energy", "[core][bsdf]") {
+TEST_CASE("RoughDielectric: reflection and transmission follow pdf from both sides, weights and energy", "[core][bsdf]" TIER_UNIT) {
   uint64_t seed = 200;
   for (const MicrofacetType type : {MicrofacetType::GGX, MicrofacetType::Beckmann}) {
     for (const float alpha : {0.2f, 0.5f}) {
@@ -291,7 +292,7 @@ TEST_CASE("RoughDielectric: reflection and transmission follow pdf from both sid
   }
 }
 
-TEST_CASE("Phong: samples follow pdf, weights are f cos / pdf, energy at most kd + ks", "[core][bsdf]") {
+TEST_CASE("Phong: samples follow pdf, weights are f cos / pdf, energy at most kd + ks", "[core][bsdf]" TIER_UNIT) {
   const Color kd(0.3f), ks(0.5f);
   uint64_t seed = 300;
   struct Config {
@@ -321,7 +322,7 @@ TEST_CASE("Phong: samples follow pdf, weights are f cos / pdf, energy at most kd
   }
 }
 
-TEST_CASE("roughplastic: samples follow pdf, weights are f cos / pdf, a white one loses little energy", "[core][bsdf]") {
+TEST_CASE("roughplastic: samples follow pdf, weights are f cos / pdf, a white one loses little energy", "[core][bsdf]" TIER_UNIT) {
   uint64_t seed = 350;
   for (const MicrofacetType type : {MicrofacetType::GGX, MicrofacetType::Beckmann}) {
     for (const double deg : {20.0, 70.0}) {
@@ -375,7 +376,7 @@ std::pair<double, double> rough_boundary_by_quadrature(const MicrofacetDistribut
 }  // namespace
 
 TEST_CASE("roughplastic: the diffuse part equals Mitsuba's formula integrated independently, alpha 0.01 to 1",
-          "[core][bsdf]") {
+          "[core][bsdf]" TIER_UNIT) {
   // Mitsuba's roughplastic: f_d = rho / (1 - F_int) / (pi eta^2) T(cos_i) T(cos_o), with the rough
   // coat's transmittance T and internal diffuse reflectance F_int = 2 int R_int(mu) mu dmu.
   // With specular_reflectance 0 the BSDF is that term alone; its energy from wo is
@@ -411,7 +412,7 @@ TEST_CASE("roughplastic: the diffuse part equals Mitsuba's formula integrated in
   }
 }
 
-TEST_CASE("plastic: the coat reflects F, the base the rest, white plastic is lossless", "[core][bsdf]") {
+TEST_CASE("plastic: the coat reflects F, the base the rest, white plastic is lossless", "[core][bsdf]" TIER_UNIT) {
   // Smooth coat, white base: F(cos_o) in the mirror direction plus the diffuse part, whose
   // albedo (1 - F(cos_o)) rho (1 - F_dr_ext) / (eta^2 (1 - F_dr_int)) is (1 - F(cos_o)) rho.
   for (const double deg : {0.0, 30.0, 60.0, 80.0}) {
@@ -445,7 +446,7 @@ TEST_CASE("plastic: the coat reflects F, the base the rest, white plastic is los
   CHECK(lin.flags() == (kBsdfDiffuse | kBsdfSpecular | kBsdfReflection));
 }
 
-TEST_CASE("Lambertian: samples follow pdf on both sides, weight is the albedo", "[core][bsdf]") {
+TEST_CASE("Lambertian: samples follow pdf on both sides, weight is the albedo", "[core][bsdf]" TIER_UNIT) {
   const Color albedo(0.25f, 0.5f, 0.75f);
   const Lambertian lam(albedo);
   uint64_t seed = 400;
@@ -462,7 +463,7 @@ TEST_CASE("Lambertian: samples follow pdf on both sides, weight is the albedo", 
   }
 }
 
-TEST_CASE("BSDF chi-square negative controls: a wrong distribution or roughness is rejected", "[core][bsdf]") {
+TEST_CASE("BSDF chi-square negative controls: a wrong distribution or roughness is rejected", "[core][bsdf]" TIER_UNIT) {
   const Vec3 wo = direction(45.0, 30.0);
   const RoughConductor ggx(MicrofacetDistribution(MicrofacetType::GGX, 0.3f, 0.3f), ConductorIor{}, Color(1.0f));
   const auto sample_ggx = [&](Rng& rng, Vec3& wi) {
@@ -495,7 +496,7 @@ TEST_CASE("BSDF chi-square negative controls: a wrong distribution or roughness 
 
 // ---- 4. Reciprocity ---------------------------------------------------------------------------
 
-TEST_CASE("BSDF reciprocity: eval(wo, wi) == eval(wi, wo) on the same side", "[core][bsdf]") {
+TEST_CASE("BSDF reciprocity: eval(wo, wi) == eval(wi, wo) on the same side", "[core][bsdf]" TIER_UNIT) {
   ConductorIor gold;
   REQUIRE(lookup_conductor("Au", gold));
   const RoughConductor ggx(MicrofacetDistribution(MicrofacetType::GGX, 0.2f, 0.6f), gold, Color(1.0f));
@@ -531,7 +532,7 @@ TEST_CASE("BSDF reciprocity: eval(wo, wi) == eval(wi, wo) on the same side", "[c
   }
 }
 
-TEST_CASE("RoughDielectric transmission: eval(wo, wi) == eta^2 eval(wi, wo) for wo outside (unscaled radiance)", "[core][bsdf]") {
+TEST_CASE("RoughDielectric transmission: eval(wo, wi) == eta^2 eval(wi, wo) for wo outside (unscaled radiance)", "[core][bsdf]" TIER_UNIT) {
   // With radiance not scaled by eta^2 at the boundary (dielectric.h), the BTDF is Walter's
   // f_t with the index of wi's side squared in the numerator: f(wo, wi) / n_i^2 is symmetric.
   for (const MicrofacetType type : {MicrofacetType::GGX, MicrofacetType::Beckmann}) {
@@ -582,7 +583,7 @@ const AlphaPair kAlphas[] = {{0.05f, 0.05f}, {0.1f, 0.1f}, {0.3f, 0.3f}, {0.6f, 
                              {0.05f, 0.3f},  {0.1f, 0.5f}, {0.7f, 0.2f}, {1.0f, 0.4f}};
 }  // namespace
 
-TEST_CASE("Microfacet: D is normalised, the projected area integral is 1", "[core][bsdf]") {
+TEST_CASE("Microfacet: D is normalised, the projected area integral is 1", "[core][bsdf]" TIER_UNIT) {
   for (const MicrofacetType type : {MicrofacetType::GGX, MicrofacetType::Beckmann}) {
     for (const AlphaPair a : kAlphas) {
       const MicrofacetDistribution dist(type, a.u, a.v);
@@ -596,7 +597,7 @@ TEST_CASE("Microfacet: D is normalised, the projected area integral is 1", "[cor
   }
 }
 
-TEST_CASE("Microfacet: visible normals from wo integrate to 1 (Smith's G1 matches D)", "[core][bsdf]") {
+TEST_CASE("Microfacet: visible normals from wo integrate to 1 (Smith's G1 matches D)", "[core][bsdf]" TIER_UNIT) {
   // The density of the normals visible from wo, G1(wo) max(0, wo.m) D(m) / wo.z, integrates to 1
   // exactly when Lambda is the Smith function of D.
   for (const MicrofacetType type : {MicrofacetType::GGX, MicrofacetType::Beckmann}) {
@@ -618,7 +619,7 @@ TEST_CASE("Microfacet: visible normals from wo integrate to 1 (Smith's G1 matche
   }
 }
 
-TEST_CASE("Microfacet: pdf(wo, m) is the density of sample_visible, zero for back-facing normals", "[core][bsdf]") {
+TEST_CASE("Microfacet: pdf(wo, m) is the density of sample_visible, zero for back-facing normals", "[core][bsdf]" TIER_UNIT) {
   // sample_visible never returns a normal facing away from wo, so its density pdf(wo, m) must be
   // zero there and integrate to 1 over the whole hemisphere of m. (A pdf of
   // G1 |wo.m| D / |wo.z| with no visibility test integrates to G1 (1 + 2 Lambda) instead:
@@ -643,7 +644,7 @@ TEST_CASE("Microfacet: pdf(wo, m) is the density of sample_visible, zero for bac
   }
 }
 
-TEST_CASE("Microfacet: sample_visible follows the visible-normal density", "[core][bsdf]") {
+TEST_CASE("Microfacet: sample_visible follows the visible-normal density", "[core][bsdf]" TIER_UNIT) {
   uint64_t seed = 700;
   for (const MicrofacetType type : {MicrofacetType::GGX, MicrofacetType::Beckmann}) {
     const MicrofacetDistribution dist(type, 0.2f, 0.6f);
@@ -666,7 +667,7 @@ TEST_CASE("Microfacet: sample_visible follows the visible-normal density", "[cor
   }
 }
 
-TEST_CASE("Microfacet: G1 between 0 and 1, 1 at normal incidence, decreasing towards grazing", "[core][bsdf]") {
+TEST_CASE("Microfacet: G1 between 0 and 1, 1 at normal incidence, decreasing towards grazing", "[core][bsdf]" TIER_UNIT) {
   Rng rng(800);
   for (const MicrofacetType type : {MicrofacetType::GGX, MicrofacetType::Beckmann}) {
     for (const AlphaPair a : kAlphas) {
@@ -720,7 +721,7 @@ double fresnel_conductor_reference(double cos_i, double eta, double k) {
 }
 }  // namespace
 
-TEST_CASE("fresnel_conductor: k = 0 is the dielectric, agrees with the real-arithmetic form", "[core][bsdf]") {
+TEST_CASE("fresnel_conductor: k = 0 is the dielectric, agrees with the real-arithmetic form", "[core][bsdf]" TIER_UNIT) {
   for (int i = 0; i <= 200; ++i) {
     const float c = i / 200.0f;
     INFO("cos " << c);
@@ -745,7 +746,7 @@ TEST_CASE("fresnel_conductor: k = 0 is the dielectric, agrees with the real-arit
   }
 }
 
-TEST_CASE("Named conductors: gold at normal incidence, known and unknown names", "[core][bsdf]") {
+TEST_CASE("Named conductors: gold at normal incidence, known and unknown names", "[core][bsdf]" TIER_UNIT) {
   ConductorIor au;
   REQUIRE(lookup_conductor("Au", au));
   CHECK_FALSE(au.perfect());
@@ -788,7 +789,7 @@ TEST_CASE("Named conductors: gold at normal incidence, known and unknown names",
 
 // ---- 7. Smooth limits ------------------------------------------------------------------------
 
-TEST_CASE("ThinDielectric: transmits along -wo, reflects 2R / (1 + R)", "[core][bsdf]") {
+TEST_CASE("ThinDielectric: transmits along -wo, reflects 2R / (1 + R)", "[core][bsdf]" TIER_UNIT) {
   const float eta = 1.5f;
   const ThinDielectric pane(eta);
   CHECK(pane.is_specular());
@@ -838,7 +839,7 @@ TEST_CASE("ThinDielectric: transmits along -wo, reflects 2R / (1 + R)", "[core][
   }
 }
 
-TEST_CASE("Conductor with a metal: weight is the Fresnel reflectance of the angle", "[core][bsdf]") {
+TEST_CASE("Conductor with a metal: weight is the Fresnel reflectance of the angle", "[core][bsdf]" TIER_UNIT) {
   for (const char* metal : {"Au", "Cu", "Al"}) {
     ConductorIor ior;
     REQUIRE(lookup_conductor(metal, ior));
@@ -869,7 +870,7 @@ TEST_CASE("Conductor with a metal: weight is the Fresnel reflectance of the angl
   }
 }
 
-TEST_CASE("TwoSided: the back BSDF sees directions mirrored into its upper hemisphere", "[core][bsdf]") {
+TEST_CASE("TwoSided: the back BSDF sees directions mirrored into its upper hemisphere", "[core][bsdf]" TIER_UNIT) {
   const RoughConductor front(MicrofacetDistribution(MicrofacetType::GGX, 0.3f, 0.3f), ConductorIor{}, Color(1.0f));
   const Lambertian back(Color(0.2f, 0.4f, 0.6f));
   const TwoSided both(&front, &back);
@@ -890,7 +891,7 @@ TEST_CASE("TwoSided: the back BSDF sees directions mirrored into its upper hemis
   }
 }
 
-TEST_CASE("dielectrics: specular_reflectance and specular_transmittance scale each side's light", "[bsdf]") {
+TEST_CASE("dielectrics: specular_reflectance and specular_transmittance scale each side's light", "[bsdf]" TIER_UNIT) {
   // Issue 24 (Mitsuba's dielectric parameters): a tint changes the weights, not the directions.
   DielectricTint tint;
   tint.reflect = Color(0.5f, 0.25f, 1.0f);
@@ -937,7 +938,7 @@ TEST_CASE("dielectrics: specular_reflectance and specular_transmittance scale ea
 // ---- blendbsdf ----------------------------------------------------------------------------
 
 TEST_CASE("blendbsdf: samples follow the mixture's pdf, weights are f cos / pdf, energy is the blend",
-          "[core][bsdf]") {
+          "[core][bsdf]" TIER_UNIT) {
   ConductorIor gold;
   REQUIRE(lookup_conductor("Au", gold));
   const Lambertian diffuse(Color(0.8f, 0.5f, 0.3f));
@@ -962,7 +963,7 @@ TEST_CASE("blendbsdf: samples follow the mixture's pdf, weights are f cos / pdf,
   }
 }
 
-TEST_CASE("blendbsdf: weight 0 and 1 are its parts, a texture weight varies over the surface", "[core][bsdf]") {
+TEST_CASE("blendbsdf: weight 0 and 1 are its parts, a texture weight varies over the surface", "[core][bsdf]" TIER_UNIT) {
   const Lambertian diffuse(Color(0.6f));
   const RoughConductor metal(MicrofacetDistribution(MicrofacetType::Beckmann, 0.2f, 0.2f), ConductorIor{}, Color(0.9f));
   const BlendBsdf first(&diffuse, &metal, Color(0.0f)), second(&diffuse, &metal, Color(1.0f));
@@ -994,7 +995,7 @@ TEST_CASE("blendbsdf: weight 0 and 1 are its parts, a texture weight varies over
   CHECK(textured.weight(sp) == 0.0f);
 }
 
-TEST_CASE("blendbsdf: with smooth glass, delta lobes keep their parts' weights", "[core][bsdf]") {
+TEST_CASE("blendbsdf: with smooth glass, delta lobes keep their parts' weights", "[core][bsdf]" TIER_UNIT) {
   // Half diffuse (albedo 0.5), half smooth glass (lossless): the mean sample weight is 0.75.
   const Lambertian diffuse(Color(0.5f));
   const Dielectric glass(1.5f, FresnelModel::Exact);
@@ -1021,7 +1022,7 @@ TEST_CASE("blendbsdf: with smooth glass, delta lobes keep their parts' weights",
 
 // ---- normalmap ----------------------------------------------------------------------------
 
-TEST_CASE("normalmap: (0.5, 0.5, 1) is the nested BSDF exactly", "[core][bsdf]") {
+TEST_CASE("normalmap: (0.5, 0.5, 1) is the nested BSDF exactly", "[core][bsdf]" TIER_UNIT) {
   ConductorIor gold;
   REQUIRE(lookup_conductor("Au", gold));
   const RoughConductor metal(MicrofacetDistribution(MicrofacetType::GGX, 0.3f, 0.1f), gold, Color(1.0f));
@@ -1044,7 +1045,7 @@ TEST_CASE("normalmap: (0.5, 0.5, 1) is the nested BSDF exactly", "[core][bsdf]")
   }
 }
 
-TEST_CASE("normalmap: a tilted normal tilts the lobe; samples, pdf and weights stay consistent", "[core][bsdf]") {
+TEST_CASE("normalmap: a tilted normal tilts the lobe; samples, pdf and weights stay consistent", "[core][bsdf]" TIER_UNIT) {
   // The normal tilted 30 degrees towards +x: rgb = (n + 1) / 2.
   const Vec3 n(std::sin(0.5235988f), 0.0f, std::cos(0.5235988f));
   const Color rgb = 0.5f * (Color(n) + Color(1.0f));
@@ -1083,7 +1084,7 @@ std::unique_ptr<BitmapTexture> ramp_texture(const test::TempDir& dir, float slop
 }
 }  // namespace
 
-TEST_CASE("bumpmap: a constant height is the nested BSDF exactly", "[core][bsdf]") {
+TEST_CASE("bumpmap: a constant height is the nested BSDF exactly", "[core][bsdf]" TIER_UNIT) {
   test::TempDir dir;
   const auto flat_texture = ramp_texture(dir, 0.0f);  // all zero: gradient zero everywhere
   ConductorIor gold;
@@ -1108,7 +1109,7 @@ TEST_CASE("bumpmap: a constant height is the nested BSDF exactly", "[core][bsdf]
   }
 }
 
-TEST_CASE("bumpmap: a ramp tilts the normal by its slope; samples, pdf and weights stay consistent", "[core][bsdf]") {
+TEST_CASE("bumpmap: a ramp tilts the normal by its slope; samples, pdf and weights stay consistent", "[core][bsdf]" TIER_UNIT) {
   test::TempDir dir;
   const auto ramp = ramp_texture(dir, 0.05f);  // dh/du = 0.05 * 8 = 0.4
   const Lambertian diffuse(Color(0.7f));
@@ -1179,7 +1180,7 @@ void check_mitsuba_values(const Bsdf& b, const double (*expected)[2]) {
 }
 }  // namespace
 
-TEST_CASE("principled: Mitsuba 3's own values of eval and pdf", "[core][bsdf][principled]") {
+TEST_CASE("principled: Mitsuba 3's own values of eval and pdf", "[core][bsdf][principled]" TIER_UNIT) {
   const double principled[20][2] = {
       {0.17007458209991455, 0.06804995983839035}, {0.15398569405078888, 0.06425636261701584},
       {0.14061447978019714, 0.060901228338479996}, {0.12924496829509735, 0.057847555726766586},
@@ -1211,7 +1212,7 @@ TEST_CASE("principled: Mitsuba 3's own values of eval and pdf", "[core][bsdf][pr
   check_mitsuba_values(t.bsdf(), thin);
 }
 
-TEST_CASE("principled: samples follow the pdf, weights are f cos / pdf, energy as integrated", "[core][bsdf][principled]") {
+TEST_CASE("principled: samples follow the pdf, weights are f cos / pdf, energy as integrated", "[core][bsdf][principled]" TIER_UNIT) {
   // Mitsuba's chi-square configurations, seen from above and (with transmission) from below.
   const char* configs[] = {
       R"({"type": "principled", "roughness": 0.6, "metallic": 0.4, "anisotropic": 0.4, "clearcoat": 0.8, "eta": 1.33})",
@@ -1234,7 +1235,7 @@ TEST_CASE("principled: samples follow the pdf, weights are f cos / pdf, energy a
   }
 }
 
-TEST_CASE("principled: its diffuse, metal and glass limits", "[core][bsdf][principled]") {
+TEST_CASE("principled: its diffuse, metal and glass limits", "[core][bsdf][principled]" TIER_UNIT) {
   Rng rng(71);
   // Diffuse: no specular lobe when eta is 1 (specular 0); with roughness 0 and no flatness the
   // value is base / pi (1 - F(cos_o) / 2)(1 - F(cos_i) / 2), F(c) = (1 - c)^5 (Burley 2012).
@@ -1272,7 +1273,7 @@ TEST_CASE("principled: its diffuse, metal and glass limits", "[core][bsdf][princ
   }
 }
 
-TEST_CASE("principled: parameters are checked, textures accepted", "[core][bsdf][principled]") {
+TEST_CASE("principled: parameters are checked, textures accepted", "[core][bsdf][principled]" TIER_UNIT) {
   CHECK_THROWS_WITH(load_bsdf(R"({"type": "principled", "metallic": 1.5})"), Catch::Contains("metallic must be from 0 to 1"));
   CHECK_THROWS_WITH(load_bsdf(R"({"type": "principled", "eta": 1.5, "specular": 0.5})"), Catch::Contains("give eta or specular, not both"));
   CHECK_THROWS_WITH(load_bsdf(R"({"type": "principled", "roughness": -0.1})"), Catch::Contains("m.json: /materials/m/roughness"));
@@ -1300,7 +1301,7 @@ TEST_CASE("principled: parameters are checked, textures accepted", "[core][bsdf]
 
 // ---- ward, coating, roughcoating ----------------------------------------------------------
 
-TEST_CASE("ward: the three variants' closed forms; samples follow the pdf", "[core][bsdf][ward]") {
+TEST_CASE("ward: the three variants' closed forms; samples follow the pdf", "[core][bsdf][ward]" TIER_UNIT) {
   // Ward 1992 in angles: f_s = rho_s exp(-tan^2 theta_h (cos^2 phi_h / ax^2 + sin^2 phi_h / ay^2)) / N.
   const float ax = 0.15f, ay = 0.4f;
   Rng rng(93);
@@ -1333,7 +1334,7 @@ TEST_CASE("ward: the three variants' closed forms; samples follow the pdf", "[co
   CHECK_THROWS_WITH(load_bsdf(R"({"type": "ward", "variant": "blinn"})"), Catch::Contains("unknown Ward variant \"blinn\""));
 }
 
-TEST_CASE("coating: a smooth layer over a diffuse base, its absorption and its mirror", "[core][bsdf][coating]") {
+TEST_CASE("coating: a smooth layer over a diffuse base, its absorption and its mirror", "[core][bsdf][coating]" TIER_UNIT) {
   // f = rho / pi (1 - F(cos_o)) (1 - F(cos_i)) exp(-sigma t (1 / cos_o' + 1 / cos_i')) / eta^2,
   // the cosines' primes inside the layer (Snell's law).
   const float eta = 1.6f, sigma = 0.3f, t = 0.5f;
@@ -1365,7 +1366,7 @@ TEST_CASE("coating: a smooth layer over a diffuse base, its absorption and its m
   }
 }
 
-TEST_CASE("coating: the rough layer tends to the smooth one as alpha goes to 0", "[core][bsdf][coating]") {
+TEST_CASE("coating: the rough layer tends to the smooth one as alpha goes to 0", "[core][bsdf][coating]" TIER_UNIT) {
   // Energy reflected in all (mean sample weight) by a smooth and a nearly smooth coating over
   // the same diffuse base: within 1 %.
   const LoadedBsdf smooth = load_bsdf(R"({"type": "coating", "int_ior": 1.5, "bsdf": {"type": "diffuse", "reflectance": 0.6}})");
@@ -1387,7 +1388,7 @@ TEST_CASE("coating: the rough layer tends to the smooth one as alpha goes to 0",
   }
 }
 
-TEST_CASE("rough conductor and dielectric: a textured alpha is the constant one where the texture has it", "[core][bsdf]") {
+TEST_CASE("rough conductor and dielectric: a textured alpha is the constant one where the texture has it", "[core][bsdf]" TIER_UNIT) {
   const char* materials[][3] = {
       {R"({"type": "roughconductor", "material": "Au", "alpha": {"type": "checkerboard", "color0": 0.05, "color1": 0.5}})",
        R"({"type": "roughconductor", "material": "Au", "alpha": 0.05})", R"({"type": "roughconductor", "material": "Au", "alpha": 0.5})"},

@@ -1,5 +1,6 @@
 // The BVH against a brute-force linear scan: closest hit, any hit, and degenerate inputs.
 #include <catch2/catch.hpp>
+#include "support/tiers.h"
 #include <algorithm>
 #include <sstream>
 #include "core/bvh.h"
@@ -129,7 +130,7 @@ void check_permutation(const Bvh& bvh, size_t n) {
 }
 }  // namespace
 
-TEST_CASE("bvh: matches a linear scan on random triangles and spheres", "[core][bvh]") {
+TEST_CASE("bvh: matches a linear scan on random triangles and spheres", "[core][bvh]" TIER_UNIT) {
   for (uint64_t seed : {1u, 2u, 3u}) {
     INFO("seed " << seed);
     const std::vector<Primitive> prims = random_scene(seed, 2000, 20);
@@ -149,7 +150,7 @@ TEST_CASE("bvh: matches a linear scan on random triangles and spheres", "[core][
   }
 }
 
-TEST_CASE("bvh: the comparison notices a BVH that lost primitives", "[core][bvh]") {
+TEST_CASE("bvh: the comparison notices a BVH that lost primitives", "[core][bvh]" TIER_UNIT) {
   // Negative control: a BVH over all but the spheres must disagree with the full scan.
   const std::vector<Primitive> prims = random_scene(4, 500, 20);
   Bvh partial;
@@ -160,7 +161,7 @@ TEST_CASE("bvh: the comparison notices a BVH that lost primitives", "[core][bvh]
   CHECK(mismatches > 20);
 }
 
-TEST_CASE("bvh: axis-aligned quads and axis-aligned rays", "[core][bvh]") {
+TEST_CASE("bvh: axis-aligned quads and axis-aligned rays", "[core][bvh]" TIER_UNIT) {
   // Flat boxes and directions with zero components (infinite 1/d) are the slab test's edge cases.
   Rng rng(7);
   std::vector<Primitive> prims;
@@ -194,7 +195,7 @@ TEST_CASE("bvh: axis-aligned quads and axis-aligned rays", "[core][bvh]") {
   check_rays(bvh, prims, rays, 0.2);
 }
 
-TEST_CASE("bvh: an empty BVH hits nothing", "[core][bvh]") {
+TEST_CASE("bvh: an empty BVH hits nothing", "[core][bvh]" TIER_UNIT) {
   Bvh bvh;
   const Ray ray{Vec3(0), Vec3(0, 0, 1)};
   Hit hit;
@@ -209,7 +210,7 @@ TEST_CASE("bvh: an empty BVH hits nothing", "[core][bvh]") {
   CHECK(hit.t == kInfinity);
 }
 
-TEST_CASE("bvh: a single primitive, and rebuilding replaces the old contents", "[core][bvh]") {
+TEST_CASE("bvh: a single primitive, and rebuilding replaces the old contents", "[core][bvh]" TIER_UNIT) {
   Bvh bvh;
   bvh.build({Primitive::sphere(Vec3(0, 0, 5), 1.0f)});
   Hit hit;
@@ -223,7 +224,7 @@ TEST_CASE("bvh: a single primitive, and rebuilding replaces the old contents", "
   CHECK(bvh.primitives().size() == 1);
 }
 
-TEST_CASE("bvh: 1000 triangles with one centroid", "[core][bvh]") {
+TEST_CASE("bvh: 1000 triangles with one centroid", "[core][bvh]" TIER_UNIT) {
   // Every centroid is exactly the origin: no split by centroid is possible.
   Rng rng(8);
   std::vector<Primitive> prims;

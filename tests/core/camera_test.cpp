@@ -1,5 +1,6 @@
 // The camera: a thin lens focuses every ray of a pixel on one point of the plane of focus.
 #include <catch2/catch.hpp>
+#include "support/tiers.h"
 #include "core/camera.h"
 #include "io/mitsuba/translate.h"
 #include "io/scene_loader.h"
@@ -9,7 +10,7 @@
 
 using namespace caustica;
 
-TEST_CASE("camera: thin-lens rays of a pixel start on the aperture and meet on the plane of focus", "[camera]") {
+TEST_CASE("camera: thin-lens rays of a pixel start on the aperture and meet on the plane of focus", "[camera]" TIER_UNIT) {
   Camera cam(Vec3(1, 2, 3), Vec3(1, 2, -7), Vec3(0, 1, 0), 40.0f, 64, 48);
   const Vec3 forward(0, 0, -1);
   cam.set_lens(0.25f, 6.0f);
@@ -38,7 +39,7 @@ TEST_CASE("camera: thin-lens rays of a pixel start on the aperture and meet on t
   CHECK(a.dir == b.dir);
 }
 
-TEST_CASE("camera: Mitsuba's thinlens maps to aperture_radius and focus_distance", "[camera][mitsuba]") {
+TEST_CASE("camera: Mitsuba's thinlens maps to aperture_radius and focus_distance", "[camera][mitsuba]" TIER_UNIT) {
   const std::string sensor = R"(<scene version="3.0.0"><sensor type="thinlens"><float name="fov" value="30"/>
     <float name="aperture_radius" value="0.1"/><float name="focus_distance" value="4.5"/></sensor></scene>)";
   const nlohmann::json doc = read_mitsuba(sensor, "s.xml", ".", {}).doc;
@@ -49,7 +50,7 @@ TEST_CASE("camera: Mitsuba's thinlens maps to aperture_radius and focus_distance
         "s.xml:1:25: <sensor type=\"thinlens\">: a thinlens sensor needs aperture_radius and focus_distance");
 }
 
-TEST_CASE("camera: orthographic rays are parallel, from a rectangle of the given size, and project back", "[camera]") {
+TEST_CASE("camera: orthographic rays are parallel, from a rectangle of the given size, and project back", "[camera]" TIER_UNIT) {
   Camera cam(Vec3(1, 2, 3), Vec3(1, 2, -7), Vec3(0, 1, 0), 40.0f, 64, 32);
   cam.set_orthographic(8.0f, 0.0f);  // 8 wide, 4 high: the film's aspect
   REQUIRE(cam.orthographic());
@@ -77,7 +78,7 @@ TEST_CASE("camera: orthographic rays are parallel, from a rectangle of the given
   CHECK(cam.generate_ray(0.0f, 0.0f).origin.y == Approx(2.5f));
 }
 
-TEST_CASE("camera: an orthographic camera sees an emitting square at its true size", "[camera]") {
+TEST_CASE("camera: an orthographic camera sees an emitting square at its true size", "[camera]" TIER_UNIT) {
   // A 2 x 2 emitter of radiance 3 in a 4 x 4 view covers a quarter of the image, its edges on
   // pixel boundaries: the image mean is 3 / 4 exactly, at any distance.
   for (const char* z : {"-1", "-40"}) {
@@ -92,7 +93,7 @@ TEST_CASE("camera: an orthographic camera sees an emitting square at its true si
   }
 }
 
-TEST_CASE("camera: Mitsuba's orthographic sensor", "[camera][mitsuba]") {
+TEST_CASE("camera: Mitsuba's orthographic sensor", "[camera][mitsuba]" TIER_UNIT) {
   auto doc = [](const std::string& inner, const std::string& film = "") {
     return read_mitsuba(R"(<scene version="3.0.0"><sensor type="orthographic">)" + inner + film + "</sensor></scene>",
                         "s.xml", ".", {})
@@ -115,7 +116,7 @@ TEST_CASE("camera: Mitsuba's orthographic sensor", "[camera][mitsuba]") {
   CHECK(d["camera"]["view_height"].get<double>() == Approx(2.0));  // y in [-2 / 2, 2 / 2]
 }
 
-TEST_CASE("camera: orthographic camera keys are checked", "[camera]") {
+TEST_CASE("camera: orthographic camera keys are checked", "[camera]" TIER_UNIT) {
   auto error = [](const std::string& camera) {
     return test::error_of([&] {
       parse_scene(R"({"camera": )" + camera + R"(, "materials": {"w": {"type": "diffuse", "albedo": [0.5, 0.5, 0.5]}},

@@ -3,6 +3,7 @@
 // own (a midpoint rule at 4000 wavelengths, not the generator's 1000 end-to-end points) and
 // compares the Fresnel reflectance at normal incidence with what the shipped table gives.
 #include <catch2/catch.hpp>
+#include "support/tiers.h"
 #include <cmath>
 #include <fstream>
 #include <map>
@@ -65,7 +66,7 @@ double r0(double n, double k) { return ((n - 1) * (n - 1) + k * k) / ((n + 1) * 
 
 }  // namespace
 
-TEST_CASE("Named conductors: every table's Fresnel at normal incidence within 1 % of its spectra", "[core][bsdf]") {
+TEST_CASE("Named conductors: every table's Fresnel at normal incidence within 1 % of its spectra", "[core][bsdf]" TIER_UNIT) {
   const auto cie = read_cie();
   REQUIRE(cie.size() == 3);
   REQUIRE(cie[0].size() == 95);
@@ -104,7 +105,7 @@ TEST_CASE("Named conductors: every table's Fresnel at normal incidence within 1 
   }
 }
 
-TEST_CASE("Named conductors: every name of Mitsuba's documentation is known", "[core][bsdf]") {
+TEST_CASE("Named conductors: every name of Mitsuba's documentation is known", "[core][bsdf]" TIER_UNIT) {
   for (const char* name : {"a-C", "Ag", "Al", "AlAs", "AlSb", "Au", "Be", "Cr", "CsI", "Cu", "Cu2O", "CuO", "d-C",
                            "Hg", "HgTe", "Ir", "K", "Li", "MgO", "Mo", "Na_palik", "Nb", "Ni_palik", "Rh", "Se",
                            "SiC", "SnTe", "Ta", "Te", "ThF4", "TiC", "TiN", "TiO2", "VC", "V", "VN", "W", "none",

@@ -1,6 +1,7 @@
 // Round linear curves: random rays through both backends against a brute-force march of the
 // swept sphere's distance; backfaces culled.
 #include <catch2/catch.hpp>
+#include "support/tiers.h"
 #include <algorithm>
 #include "core/accel.h"
 #include "core/error.h"
@@ -69,7 +70,7 @@ Bounds bounds_of(const std::vector<Primitive>& prims) {
 }  // namespace
 
 TEST_CASE("linearcurve: random rays hit round linear curves where a brute-force march does, in both backends",
-          "[curve][accel]") {
+          "[curve][accel]" TIER_UNIT) {
   Rng rng(20261207);
   for (int scene = 0; scene < 4; ++scene) {
     // A wavy chain of segments with radii from thin to thick, a few of them tapering fast.
@@ -115,7 +116,7 @@ TEST_CASE("linearcurve: random rays hit round linear curves where a brute-force 
   }
 }
 
-TEST_CASE("linearcurve: a ray from inside a curve does not hit it (culled backfaces, as Embree and Mitsuba)", "[curve][accel]") {
+TEST_CASE("linearcurve: a ray from inside a curve does not hit it (culled backfaces, as Embree and Mitsuba)", "[curve][accel]" TIER_UNIT) {
   const std::vector<Primitive> curves = {Primitive::linear_curve(Vec3(0, 0, 0), 0.5f, Vec3(3, 0, 0), 0.2f, 0, 1)};
   for (AccelKind kind : {AccelKind::Bvh, AccelKind::Embree}) {
     if (choose_accel(kind) != kind) continue;
@@ -164,7 +165,7 @@ double spline_distance(const Vec3& p, const glm::vec4 cp[4], double* u_closest =
 }  // namespace
 
 TEST_CASE("bsplinecurve: random rays hit round B-spline curves where a brute-force march does, in both backends",
-          "[curve][accel]") {
+          "[curve][accel]" TIER_UNIT) {
   Rng rng(20261208);
   for (int scene = 0; scene < 3; ++scene) {
     // One curve of 7 control points (4 segments), bending, radii thin to thick.

@@ -1,5 +1,6 @@
 // Exact, order-independent sums (core/fixed_sum.h): what lets MPI ranks add their images.
 #include <catch2/catch.hpp>
+#include "support/tiers.h"
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -9,7 +10,7 @@
 
 using namespace caustica;
 
-TEST_CASE("fixed sum: any order and grouping of the same floats gives the same bits", "[core][fixed_sum]") {
+TEST_CASE("fixed sum: any order and grouping of the same floats gives the same bits", "[core][fixed_sum]" TIER_UNIT) {
   std::mt19937 rng(42);
   // Radiance-like samples over 12 orders of magnitude, with fireflies.
   std::uniform_real_distribution<double> exponent(-8.0, 4.0);
@@ -36,7 +37,7 @@ TEST_CASE("fixed sum: any order and grouping of the same floats gives the same b
 }
 
 TEST_CASE("fixed sum: values are held exactly down to 2^-41, clamped at 1e12, and NaN counts as 0",
-          "[core][fixed_sum]") {
+          "[core][fixed_sum]" TIER_UNIT) {
   for (float x : {1.0f, 0.1f, 3.0e-7f, 123456.78f, std::ldexp(1.0f, -41), std::ldexp(1.5f, -30)}) {
     CHECK(from_fixed(to_fixed(x)) == double(x));
     CHECK(from_fixed(to_fixed(-x)) == -double(x));

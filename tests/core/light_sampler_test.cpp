@@ -2,6 +2,7 @@
 // and match what it samples; it never rules out a light that reaches a point), the cone union,
 // and the direct-light estimate it feeds, unbiased and less noisy where lights differ in reach.
 #include <catch2/catch.hpp>
+#include "support/tiers.h"
 #include <map>
 #include "core/light_sampler.h"
 #include "core/lights/area.h"
@@ -63,7 +64,7 @@ bool reaches(const Light& light, const Vec3& p, const Vec3& n, Rng& rng) {
 }
 }  // namespace
 
-TEST_CASE("direction cones: the union holds both cones", "[core][light_sampler]") {
+TEST_CASE("direction cones: the union holds both cones", "[core][light_sampler]" TIER_UNIT) {
   Rng rng(11);
   for (int t = 0; t < 2000; ++t) {
     const DirectionCone a{random_direction(rng), std::cos(kPi * rng.next_float())};
@@ -90,7 +91,7 @@ TEST_CASE("direction cones: the union holds both cones", "[core][light_sampler]"
 }
 
 TEST_CASE("light tree: probabilities add to one, match what it samples, and never rule out a light that reaches the point",
-          "[core][light_sampler]") {
+          "[core][light_sampler]" TIER_UNIT) {
   Rng rng(5);
   int reached = 0;
   for (int n : {1, 2, 7, 40}) {
@@ -140,7 +141,7 @@ TEST_CASE("light tree: probabilities add to one, match what it samples, and neve
   CHECK(reached > 100);  // the test's premise: most points see some light
 }
 
-TEST_CASE("light tree: the dim light beside a point gets its samples (Mitsuba's hello.xml)", "[core][light_sampler]") {
+TEST_CASE("light tree: the dim light beside a point gets its samples (Mitsuba's hello.xml)", "[core][light_sampler]" TIER_UNIT) {
   // Two point lights of intensity 10 and 1, a floor point under the dim one and far from the
   // bright one: by power the dim light gets 1/11 of the shadow rays; the tree gives it most.
   const std::string text = test::floor_scene(R"({"type": "point", "position": [20, 4, 0], "intensity": 10},
@@ -158,7 +159,7 @@ TEST_CASE("light tree: the dim light beside a point gets its samples (Mitsuba's 
 }
 
 TEST_CASE("light tree: the direct light it estimates is unbiased, with less spread than choosing by power",
-          "[core][light_sampler][direct]") {
+          "[core][light_sampler][direct]" TIER_UNIT) {
   // Eight point lights of powers over two decades around a floor point, some far: the exact
   // direct light is their sum, rho / pi * I cos / d^2.
   std::string lights;
@@ -200,7 +201,7 @@ TEST_CASE("light tree: the direct light it estimates is unbiased, with less spre
 }
 
 TEST_CASE("light tree: lights at infinity are chosen n / (n + 1) of the time, by power among them",
-          "[core][light_sampler]") {
+          "[core][light_sampler]" TIER_UNIT) {
   const std::string text = test::floor_scene(R"({"type": "point", "position": [0, 2, 0], "intensity": 1},
       {"type": "directional", "direction": [0, -1, 0], "irradiance": 1},
       {"type": "directional", "direction": [1, -1, 0], "irradiance": 3})");
@@ -213,7 +214,7 @@ TEST_CASE("light tree: lights at infinity are chosen n / (n + 1) of the time, by
 }
 
 TEST_CASE("light sampler: --light-sampler and the render block's light_sampler; unknown names are errors",
-          "[core][light_sampler][scene_loader]") {
+          "[core][light_sampler][scene_loader]" TIER_UNIT) {
   std::string text = test::floor_scene(R"({"type": "point", "position": [0, 2, 0], "intensity": 1})");
   text.insert(text.find('{') + 1, R"("render": {"light_sampler": "power"},)");
   CHECK(parse_scene(text, "test.json", ".").scene->render.light_sampler == LightSamplerKind::Power);
@@ -245,7 +246,7 @@ std::string four_lights_scene(const char* sampler) {
 }  // namespace
 
 TEST_CASE("light tree: path and photon images agree with the power sampler's (MIS weights use the tree's probabilities)",
-          "[core][light_sampler][trace]") {
+          "[core][light_sampler][trace]" TIER_FIGURE) {
   const auto by_power = test::render_text(four_lights_scene("power"), "path", "{}", 256, 48, 32, 3);
   const auto by_tree = test::render_text(four_lights_scene("tree"), "path", "{}", 256, 48, 32, 4);
   const auto photon = test::render_text(four_lights_scene("tree"), "photon", "{}", 64, 48, 32, 5);

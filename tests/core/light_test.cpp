@@ -1,6 +1,7 @@
 // Spot profiles, environment-map sampling against its density (chi-square) and light-block
 // errors.
 #include <catch2/catch.hpp>
+#include "support/tiers.h"
 #include "support/scenes.h"
 #include "core/lights/environment.h"
 #include "core/lights/area.h"
@@ -18,7 +19,7 @@ namespace {
 constexpr double kDeg = 3.14159265358979323846 / 180.0;
 }  // namespace
 
-TEST_CASE("spot profile: full inside the beam, linear in the angle to the cutoff, zero outside", "[core][light]") {
+TEST_CASE("spot profile: full inside the beam, linear in the angle to the cutoff, zero outside", "[core][light]" TIER_UNIT) {
   const SpotProfile spot(Vec3(0, 0, 1), 30.0f, 10.0f);
   auto at = [](double deg) { return Vec3(float(std::sin(deg * kDeg)), 0.0f, float(std::cos(deg * kDeg))); };
   CHECK(spot.falloff(at(0)) == 1.0f);
@@ -38,7 +39,7 @@ TEST_CASE("spot profile: full inside the beam, linear in the angle to the cutoff
 }
 
 TEST_CASE("environment map: sampling matches pdf_escaped (chi-square), and the density integrates to 1",
-          "[core][light][chi2]") {
+          "[core][light][chi2]" TIER_UNIT) {
   // A gradient with a bright spot, rotated: sampling must follow luminance * sin(theta).
   Image img(32, 16);
   for (int y = 0; y < img.height; ++y) {
@@ -72,7 +73,7 @@ TEST_CASE("environment map: sampling matches pdf_escaped (chi-square), and the d
   CHECK_FALSE(test::chi2_test(hist.counts(), uniform).accepts(1e-3));
 }
 
-TEST_CASE("environment map: the bright pixel is seen where to_world puts it", "[core][light]") {
+TEST_CASE("environment map: the bright pixel is seen where to_world puts it", "[core][light]" TIER_UNIT) {
   Image img(8, 4);
   for (Color& c : img.pixels) c = Color(1.0f);
   img.at(0, 1) = Color(50.0f);  // u in [0, 1/8): phi near 0, i.e. local -z; v in [1/4, 1/2)
@@ -83,7 +84,7 @@ TEST_CASE("environment map: the bright pixel is seen where to_world puts it", "[
   CHECK(env.escaped(Vec3(0, 1, 0)).x == Approx(2.0f));
 }
 
-TEST_CASE("lights: bad light blocks are errors naming the key", "[core][light][scene_loader]") {
+TEST_CASE("lights: bad light blocks are errors naming the key", "[core][light][scene_loader]" TIER_UNIT) {
   auto load = [](const std::string& light) { return parse_scene(floor_scene(light), "l.json", "."); };
   CHECK_THROWS_WITH(load(R"({"type": "spot", "position": [0, 1, 0], "intensity": 1})"),
                     Catch::Contains("give either direction or target"));

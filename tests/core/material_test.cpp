@@ -1,6 +1,7 @@
 // Fresnel (exact and Schlick), glass and mirror sampling against double-precision references
 // and textbook values.
 #include <catch2/catch.hpp>
+#include "support/tiers.h"
 #include <cmath>
 #include "core/bsdf/conductor.h"
 #include "core/bsdf/dielectric.h"
@@ -38,7 +39,7 @@ Vec3 direction(double theta, double phi, bool below = false) {
 }
 }  // namespace
 
-TEST_CASE("fresnel_dielectric: normal incidence and 45 degrees for glass", "[core][material]") {
+TEST_CASE("fresnel_dielectric: normal incidence and 45 degrees for glass", "[core][material]" TIER_UNIT) {
   CHECK(fresnel_dielectric(1.0f, 1.5f) == Approx(0.04).margin(1e-6));
   CHECK(fresnel_dielectric(1.0f, 1.0f / 1.5f) == Approx(0.04).margin(1e-6));  // same from inside
 
@@ -52,7 +53,7 @@ TEST_CASE("fresnel_dielectric: normal incidence and 45 degrees for glass", "[cor
   CHECK(f45 == Approx(0.05025).margin(1e-3));
 }
 
-TEST_CASE("fresnel_dielectric matches the angle form at all angles, both ways", "[core][material]") {
+TEST_CASE("fresnel_dielectric matches the angle form at all angles, both ways", "[core][material]" TIER_UNIT) {
   for (double eta : {1.33, 1.5, 2.4}) {
     for (double deg = 0; deg < 90; deg += 0.5) {
       INFO("eta " << eta << ", " << deg << " degrees");
@@ -72,7 +73,7 @@ TEST_CASE("fresnel_dielectric matches the angle form at all angles, both ways", 
   CHECK(fresnel_dielectric(0.0f, 1.5f) == Approx(1.0f));  // grazing
 }
 
-TEST_CASE("fresnel_dielectric: total internal reflection beyond the critical angle", "[core][material]") {
+TEST_CASE("fresnel_dielectric: total internal reflection beyond the critical angle", "[core][material]" TIER_UNIT) {
   const float eta = 1.0f / 1.5f;
   const double critical = std::asin(1.0 / 1.5) / kDeg;  // 41.81 degrees
   REQUIRE(critical == Approx(41.81).margin(0.005));
@@ -86,7 +87,7 @@ TEST_CASE("fresnel_dielectric: total internal reflection beyond the critical ang
   CHECK(fresnel_dielectric(float(std::cos(30 * kDeg)), eta) < 0.1f);
 }
 
-TEST_CASE("fresnel_schlick: R0 at normal incidence, close to exact at 30 degrees", "[core][material]") {
+TEST_CASE("fresnel_schlick: R0 at normal incidence, close to exact at 30 degrees", "[core][material]" TIER_UNIT) {
   CHECK(fresnel_schlick(1.0f, 1.5f) == Approx(0.04).margin(1e-6));
   const float c30 = float(std::cos(30 * kDeg));
   CHECK(std::abs(fresnel_schlick(c30, 1.5f) - fresnel_reference(30 * kDeg, 1.5).average()) < 0.01);
@@ -100,7 +101,7 @@ TEST_CASE("fresnel_schlick: R0 at normal incidence, close to exact at 30 degrees
   CHECK(fresnel_schlick(float(std::cos(45 * kDeg)), 1.0f / 1.5f) == 1.0f);  // total internal reflection
 }
 
-TEST_CASE("Dielectric::sample: reflection fraction is the Fresnel reflectance, refraction obeys Snell", "[core][material]") {
+TEST_CASE("Dielectric::sample: reflection fraction is the Fresnel reflectance, refraction obeys Snell", "[core][material]" TIER_UNIT) {
   const float ior = 1.5f;
   const int n = 200000;
   for (const FresnelModel model : {FresnelModel::Exact, FresnelModel::Schlick}) {
@@ -164,7 +165,7 @@ TEST_CASE("Dielectric::sample: reflection fraction is the Fresnel reflectance, r
   }
 }
 
-TEST_CASE("Dielectric: total internal reflection always reflects", "[core][material]") {
+TEST_CASE("Dielectric: total internal reflection always reflects", "[core][material]" TIER_UNIT) {
   const Dielectric glass(1.5f, FresnelModel::Exact);
   const Vec3 wo = direction(60 * kDeg, 1.3, /*below=*/true);
   Vec3 wt;
@@ -181,7 +182,7 @@ TEST_CASE("Dielectric: total internal reflection always reflects", "[core][mater
   CHECK(is_black(glass.eval(Vec3(0, 0, 1), Vec3(0, 0, 1))));
 }
 
-TEST_CASE("Conductor without an index (mirror) reflects about the normal with weight = reflectance", "[core][material]") {
+TEST_CASE("Conductor without an index (mirror) reflects about the normal with weight = reflectance", "[core][material]" TIER_UNIT) {
   const Color refl(0.9f, 0.5f, 0.1f);
   const Conductor mirror(ConductorIor{}, refl);
   CHECK(mirror.is_specular());

@@ -1,6 +1,7 @@
 // Participating media: phase functions against their densities (chi-square), the homogeneous
 // medium's transmittance and free-flight sampling against their integrals.
 #include <catch2/catch.hpp>
+#include "support/tiers.h"
 #include <algorithm>
 #include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
@@ -19,7 +20,7 @@ const double kAlpha = test::sidak_alpha(0.01, kChi2Tests);
 
 TEST_CASE("media: Henyey-Greenstein and isotropic sampling match their densities (chi-square), and HG's mean "
           "cosine is g",
-          "[core][media][chi2]") {
+          "[core][media][chi2]" TIER_UNIT) {
   const Vec3 wo = glm::normalize(Vec3(0.3f, -0.5f, 0.8f));
   auto check = [&](const PhaseFunction& phase, uint64_t seed) {
     constexpr int n = 200000;
@@ -53,7 +54,7 @@ TEST_CASE("media: Henyey-Greenstein and isotropic sampling match their densities
 
 TEST_CASE("media: a homogeneous medium's transmittance is Beer-Lambert's, and free-flight sampling's weights average "
           "to the transmittance (passing) and to the scattered part albedo (1 - Tr) (scattering), per channel",
-          "[core][media]") {
+          "[core][media]" TIER_UNIT) {
   // Chromatic: each channel's distance density differs, so the one-sample MIS over channels is
   // what keeps the weights right.
   const Color sigma_t(0.5f, 1.0f, 2.0f), albedo(0.9f, 0.5f, 0.2f);
@@ -106,7 +107,7 @@ TEST_CASE("media: a homogeneous medium's transmittance is Beer-Lambert's, and fr
 
 TEST_CASE("media: an extinction of zero in a channel passes that channel, and a medium that scatters nothing "
           "passes every segment with its transmittance",
-          "[core][media]") {
+          "[core][media]" TIER_UNIT) {
   // sigma_t 0 in red: red always passes, its exponential never ends within the segment.
   const HomogeneousMedium m(Color(0.0f, 1.0f, 1.0f), Color(0.5f), std::make_unique<IsotropicPhase>());
   const Ray ray{Vec3(0.0f), Vec3(1.0f, 0.0f, 0.0f), kInfinity};
@@ -136,7 +137,7 @@ VolumeGrid random_grid(uint64_t seed) {
 }  // namespace
 
 TEST_CASE("media: a grid volume interpolates its voxels trilinearly within its box and is zero outside it",
-          "[core][media]") {
+          "[core][media]" TIER_UNIT) {
   const VolumeGrid g = random_grid(5);
   const GridVolume v(g);
   auto at = [&](int x, int y, int z) { return g.values[size_t((z * g.ny + y) * g.nx + x)]; };
@@ -160,7 +161,7 @@ TEST_CASE("media: a grid volume interpolates its voxels trilinearly within its b
 
 TEST_CASE("media: in a grid medium, ratio tracking's transmittance and delta tracking's chance of passing both "
           "average to exp(-integral of sigma_t), and a constant grid is the homogeneous medium",
-          "[core][media]") {
+          "[core][media]" TIER_UNIT) {
   const VolumeGrid g = random_grid(11);
   const float scale = 0.8f;
   auto medium = [&](VolumeGrid grid) {
@@ -208,7 +209,7 @@ TEST_CASE("media: in a grid medium, ratio tracking's transmittance and delta tra
 
 TEST_CASE("media: a grid placed as Mitsuba 3 places it: the unit cube under to_world, values at the cells' "
           "centres, held beyond the outer centres and clamped outside the box within its bounds; nearest filtering",
-          "[core][media]") {
+          "[core][media]" TIER_UNIT) {
   const VolumeGrid g = random_grid(17);
   auto at = [&](int x, int y, int z) { return g.values[size_t((z * g.ny + y) * g.nx + x)]; };
   GridPlacement place;
@@ -274,7 +275,7 @@ VolumeGrid chromatic_grid(uint64_t seed, const Color& lo, const Color& range) {
 
 TEST_CASE("media: a chromatic grid medium tracked in one hero channel gives every channel its transmittance and "
           "its scattered part (spectral MIS over the path), and ratio tracking each channel's transmittance",
-          "[core][media]") {
+          "[core][media]" TIER_UNIT) {
   const VolumeGrid g = chromatic_grid(29, Color(0.2f, 1.0f, 0.0f), Color(0.5f, 1.0f, 3.0f));
   const Color albedo(0.9f, 0.6f, 0.3f);
   const HeterogeneousMedium m(std::make_unique<GridVolume>(g), std::make_unique<ConstVolume>(albedo), 1.0f,
@@ -307,7 +308,7 @@ TEST_CASE("media: a chromatic grid medium tracked in one hero channel gives ever
 
 TEST_CASE("media: a chromatic flight's record of null collisions gives every channel its transmittance to each "
           "point before the flight's end, whichever channel was tracked (the beam estimate's weights)",
-          "[core][media]") {
+          "[core][media]" TIER_UNIT) {
   const VolumeGrid g = chromatic_grid(41, Color(0.1f, 0.8f, 0.0f), Color(0.4f, 1.0f, 2.5f));
   const HeterogeneousMedium m(std::make_unique<GridVolume>(g), std::make_unique<ConstVolume>(Color(0.8f)), 1.0f,
                               std::make_unique<IsotropicPhase>());
@@ -364,7 +365,7 @@ TEST_CASE("media: a chromatic flight's record of null collisions gives every cha
 }
 
 TEST_CASE("media: a path's hero throughput stays finite and exact over hundreds of thin-medium events",
-          "[core][media]") {
+          "[core][media]" TIER_UNIT) {
   // Scattering events in a thin grey fog (sigma_t 0.003, albedo 0.9, 100 units apart): each
   // event's weight sigma_s Tr and density sigma_t Tr are ~1e-3, their products underflow a
   // float within 15 events; the throughput, albedo^n, must not.

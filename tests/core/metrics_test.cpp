@@ -1,5 +1,6 @@
 // Error metrics on images with known error.
 #include <catch2/catch.hpp>
+#include "support/tiers.h"
 #include "io/json_reader.h"
 #include "core/metrics.h"
 #include "core/rng.h"
@@ -15,7 +16,7 @@ Image ramp(int w, int h) {
 }
 }  // namespace
 
-TEST_CASE("metrics: a constant offset gives RMSE and MAE equal to the offset", "[core][metrics]") {
+TEST_CASE("metrics: a constant offset gives RMSE and MAE equal to the offset", "[core][metrics]" TIER_UNIT) {
   const Image ref = ramp(16, 8);
   Image img = ref;
   for (Color& c : img.pixels) c += Color(0.25f);
@@ -32,7 +33,7 @@ TEST_CASE("metrics: a constant offset gives RMSE and MAE equal to the offset", "
   CHECK(m.mean_reference.b == Approx(0.5f));
 }
 
-TEST_CASE("metrics: identical images have zero error and infinite PSNR", "[core][metrics]") {
+TEST_CASE("metrics: identical images have zero error and infinite PSNR", "[core][metrics]" TIER_UNIT) {
   const Image ref = ramp(5, 5);
   const ErrorMetrics m = compare_images(ref, ref);
   CHECK(m.rmse == 0.0);
@@ -40,7 +41,7 @@ TEST_CASE("metrics: identical images have zero error and infinite PSNR", "[core]
   CHECK(std::isinf(m.psnr));
 }
 
-TEST_CASE("metrics: a single wrong pixel", "[core][metrics]") {
+TEST_CASE("metrics: a single wrong pixel", "[core][metrics]" TIER_UNIT) {
   Image ref(10, 10), img(10, 10);
   img.at(3, 4) = Color(1.0f, 0.0f, 0.0f);  // one channel of one pixel off by 1
   const ErrorMetrics m = compare_images(img, ref);
@@ -49,12 +50,12 @@ TEST_CASE("metrics: a single wrong pixel", "[core][metrics]") {
   CHECK(m.max_error == Approx(1.0));
 }
 
-TEST_CASE("metrics: different sizes are an error naming both", "[core][metrics]") {
+TEST_CASE("metrics: different sizes are an error naming both", "[core][metrics]" TIER_UNIT) {
   REQUIRE_THROWS_WITH(compare_images(Image(4, 4), Image(4, 5), "a.exr", "b.exr"),
                       Catch::Contains("a.exr is 4x4, b.exr is 4x5"));
 }
 
-TEST_CASE("metrics: the error map has the image above a colour bar", "[core][metrics]") {
+TEST_CASE("metrics: the error map has the image above a colour bar", "[core][metrics]" TIER_UNIT) {
   const Image ref = ramp(64, 48);
   Image img = ref;
   img.at(10, 10) += Color(5.0f);
@@ -67,7 +68,7 @@ TEST_CASE("metrics: the error map has the image above a colour bar", "[core][met
   CHECK(false_colour(1.0f).g > false_colour(0.0f).g);  // the ramp rises
 }
 
-TEST_CASE("metrics: several references give their mean and the relMSE their noise adds", "[core][metrics]") {
+TEST_CASE("metrics: several references give their mean and the relMSE their noise adds", "[core][metrics]" TIER_UNIT) {
   // A known image t, K = 4 references and one image, each t plus its own independent uniform
   // noise on [-a, a] (variance a^2 / 3). Against the references' mean, the image's relMSE is
   // its error against t plus the mean's own, a^2 / 3 / K per value: the floor.
@@ -116,7 +117,7 @@ TEST_CASE("metrics: several references give their mean and the relMSE their nois
   CHECK(compare_images(image, truth).relmse == Approx(true_error).epsilon(1e-6));
 }
 
-TEST_CASE("metrics: one reference has no floor; references of other sizes are an error", "[core][metrics]") {
+TEST_CASE("metrics: one reference has no floor; references of other sizes are an error", "[core][metrics]" TIER_UNIT) {
   const Image r = ramp(16, 8);
   const Reference one = combine_references({r}, {"r.exr"});
   CHECK(one.renders == 1);

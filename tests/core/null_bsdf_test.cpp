@@ -1,6 +1,7 @@
 // Mitsuba's `null` BSDF: rays, shadow rays and photons pass through it, so a null surface
 // changes no image; read from JSON and from Mitsuba XML through the BSDF registry.
 #include <catch2/catch.hpp>
+#include "support/tiers.h"
 #include "core/bsdf/null.h"
 #include "core/bsdf/registry.h"
 #include "io/scene_loader.h"
@@ -36,7 +37,7 @@ double mean_of(const std::string& scene, const std::string& integrator, const st
 }
 }  // namespace
 
-TEST_CASE("null: a ray passes through the surface to what lies behind it", "[core][bsdf][null]") {
+TEST_CASE("null: a ray passes through the surface to what lies behind it", "[core][bsdf][null]" TIER_UNIT) {
   LoadedScene loaded = parse_scene(lamp_scene(R"({"type": "null"})"), "null.json", ".");
   const Scene& scene = *loaded.scene;
   SurfaceHit hit;
@@ -59,7 +60,7 @@ TEST_CASE("null: a ray passes through the surface to what lies behind it", "[cor
   CHECK(solid.scene->occluded(Ray{Vec3(0.2f, 0.01f, 0.2f), Vec3(0, 1, 0), 1.9f}));
 }
 
-TEST_CASE("null: path and photon render the lamp scene as if the null surface were not there", "[core][bsdf][null]") {
+TEST_CASE("null: path and photon render the lamp scene as if the null surface were not there", "[core][bsdf][null]" TIER_UNIT) {
   const std::string without = lamp_scene("");
   const std::string with_null = lamp_scene(R"({"type": "null"})");
   const std::string with_blocker = lamp_scene(R"({"type": "diffuse", "reflectance": 0})");
@@ -75,7 +76,7 @@ TEST_CASE("null: path and photon render the lamp scene as if the null surface we
   }
 }
 
-TEST_CASE("null: the registry's row, JSON and Mitsuba XML", "[core][bsdf][null]") {
+TEST_CASE("null: the registry's row, JSON and Mitsuba XML", "[core][bsdf][null]" TIER_UNIT) {
   const BsdfPlugin* row = find_bsdf_plugin("null");
   REQUIRE(row);
   CHECK(row->mitsuba);

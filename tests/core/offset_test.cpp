@@ -1,12 +1,13 @@
 // Self-intersection: rays leaving a surface, even at grazing angles, never hit it again.
 #include <catch2/catch.hpp>
+#include "support/tiers.h"
 #include "io/scene_loader.h"
 #include "core/rng.h"
 #include "core/sampling.h"
 
 using namespace caustica;
 
-TEST_CASE("offset: grazing rays leaving a surface do not hit it again", "[core][offset]") {
+TEST_CASE("offset: grazing rays leaving a surface do not hit it again", "[core][offset]" TIER_UNIT) {
   // A tilted quad and a sphere, at small and at Cornell-box scale.
   for (float scale : {1.0f, 550.0f}) {
     const std::string s = std::to_string(scale);

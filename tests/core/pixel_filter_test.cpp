@@ -1,5 +1,6 @@
 // Pixel filters: samples distributed as the filter (moments and a quantile), and Mitsuba's rfilter.
 #include <catch2/catch.hpp>
+#include "support/tiers.h"
 #include "io/mitsuba/translate.h"
 #include "core/pixel_filter.h"
 #include "io/scene_loader.h"
@@ -29,7 +30,7 @@ Moments moments(const PixelFilter& f) {
 }
 }  // namespace
 
-TEST_CASE("pixel filter: box, Gaussian and tent samples follow the filter", "[filter]") {
+TEST_CASE("pixel filter: box, Gaussian and tent samples follow the filter", "[filter]" TIER_UNIT) {
   const PixelFilter box = PixelFilter::box();
   CHECK(box.is_box());
   CHECK(box.sample(Vec2(0.25f, 0.75f)) == Vec2(-0.25f, 0.25f));
@@ -48,7 +49,7 @@ TEST_CASE("pixel filter: box, Gaussian and tent samples follow the filter", "[fi
   CHECK(t.inside_half == Approx(0.75).epsilon(0.005));  // 1 - (1 - 0.5)^2
 }
 
-TEST_CASE("pixel filter: Mitsuba's rfilter and its default", "[filter][mitsuba]") {
+TEST_CASE("pixel filter: Mitsuba's rfilter and its default", "[filter][mitsuba]" TIER_UNIT) {
   auto film = [](const std::string& inner) {
     return read_mitsuba("<scene version=\"3.0.0\"><sensor type=\"perspective\"><film type=\"hdrfilm\">" + inner +
                             "</film></sensor></scene>",
@@ -117,7 +118,7 @@ void check_signed_filter(const PixelFilter& f, double expect_negative_share) {
 }
 }  // namespace
 
-TEST_CASE("pixel filter: Mitchell, Catmull-Rom and Lanczos, negative lobes weighted", "[filter]") {
+TEST_CASE("pixel filter: Mitchell, Catmull-Rom and Lanczos, negative lobes weighted", "[filter]" TIER_UNIT) {
   // Mitchell-Netravali at B = C = 1/3: f(0) = (6 - 2B) / 6, zero at |x| = 2, negative beyond
   // about 1.27 pixels.
   const PixelFilter mitchell = PixelFilter::mitchell(1.0f / 3.0f, 1.0f / 3.0f);
@@ -151,7 +152,7 @@ TEST_CASE("pixel filter: Mitchell, Catmull-Rom and Lanczos, negative lobes weigh
   CHECK_FALSE(PixelFilter::tent(1.0f).has_negative_lobes());
 }
 
-TEST_CASE("pixel filter: the JSON scene's filter and its errors", "[filter]") {
+TEST_CASE("pixel filter: the JSON scene's filter and its errors", "[filter]" TIER_UNIT) {
   auto scene_with = [](const std::string& filter) {
     return parse_scene(R"({"render": {"width": 8, "height": 8, "filter": )" + filter +
                            R"(}, "camera": {"position": [0, 0, 5], "look_at": [0, 0, 0]}, "materials": {"w": {"type": "diffuse", "albedo": [0.5, 0.5, 0.5], "emission": [1, 1, 1]}}, "objects": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "w"}]})",

@@ -1,6 +1,7 @@
 // The plugin registries: every registered plugin is documented, and whatever lists a family
 // (error messages, the Mitsuba translator) lists exactly the registry's rows.
 #include <catch2/catch.hpp>
+#include "support/tiers.h"
 #include "core/bsdf/registry.h"
 #include "core/lights/registry.h"
 #include "core/media/registry.h"
@@ -36,7 +37,7 @@ void check_documented(const std::vector<Plugin>& table) {
   }
 }
 
-TEST_CASE("registries: the docs name every registered plugin", "[core][registry]") {
+TEST_CASE("registries: the docs name every registered plugin", "[core][registry]" TIER_UNIT) {
   REQUIRE(bsdf_plugins().size() >= 14);
   check_documented(bsdf_plugins());
   REQUIRE(texture_plugins().size() >= 2);
@@ -58,7 +59,7 @@ TEST_CASE("registries: the docs name every registered plugin", "[core][registry]
   }
 }
 
-TEST_CASE("registries: the BSDF table drives the JSON reader's errors and the Mitsuba translator", "[core][registry]") {
+TEST_CASE("registries: the BSDF table drives the JSON reader's errors and the Mitsuba translator", "[core][registry]" TIER_UNIT) {
   const std::string error = test::error_of([] { parse_scene(scene_with(R"({"type": "velvet"})"), "s.json", "."); });
   REQUIRE_FALSE(error.empty());
   for (const BsdfPlugin& p : bsdf_plugins()) {
@@ -83,7 +84,7 @@ TEST_CASE("registries: the BSDF table drives the JSON reader's errors and the Mi
   }
 }
 
-TEST_CASE("registries: caustica plugins lists every row, and its fuzz dictionaries every name", "[core][registry]") {
+TEST_CASE("registries: caustica plugins lists every row, and its fuzz dictionaries every name", "[core][registry]" TIER_PROCESS) {
   test::TempDir dir;
   const test::RunResult list = test::run_caustica("plugins", dir);
   REQUIRE(list.exit_code == 0);

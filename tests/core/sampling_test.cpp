@@ -1,6 +1,7 @@
 // Chi-square tests of the warping functions, Distribution1D and Lambertian sampling against
 // their densities, plus checks of the chi-square helper itself (it must be able to reject).
 #include <catch2/catch.hpp>
+#include "support/tiers.h"
 #include <functional>
 #include "core/bsdf/diffuse.h"
 #include "core/rng.h"
@@ -42,7 +43,7 @@ Chi2Result sphere_chi2(const std::function<Vec3(Rng&)>& sample, const std::funct
 }
 }  // namespace
 
-TEST_CASE("chi2 helper: incomplete gamma and p-values match tables", "[core][sampling][chi2]") {
+TEST_CASE("chi2 helper: incomplete gamma and p-values match tables", "[core][sampling][chi2]" TIER_UNIT) {
   for (double x : {0.01, 0.5, 1.0, 3.0, 10.0, 40.0}) CHECK(test::gamma_q(1.0, x) == Approx(std::exp(-x)).epsilon(1e-12));
   // Q(1/2, x) = erfc(sqrt(x)).
   for (double x : {0.01, 0.3, 1.2, 5.0, 20.0}) CHECK(test::gamma_q(0.5, x) == Approx(std::erfc(std::sqrt(x))).epsilon(1e-10));
@@ -56,7 +57,7 @@ TEST_CASE("chi2 helper: incomplete gamma and p-values match tables", "[core][sam
   CHECK(test::sidak_alpha(0.01, 10) == Approx(0.0010045).epsilon(1e-4));
 }
 
-TEST_CASE("chi2 helper: pooling, exact fit, zero-expected cells", "[core][sampling][chi2]") {
+TEST_CASE("chi2 helper: pooling, exact fit, zero-expected cells", "[core][sampling][chi2]" TIER_UNIT) {
   const std::vector<double> expected = {1, 1, 1, 2, 100, 100};
   Chi2Result exact = test::chi2_test(expected, expected);
   CHECK(exact.statistic == 0.0);
@@ -74,7 +75,7 @@ TEST_CASE("chi2 helper: pooling, exact fit, zero-expected cells", "[core][sampli
   CHECK(impossible.p_value == 0.0);
 }
 
-TEST_CASE("chi2 negative control: cosine samples fail against the uniform hemisphere pdf", "[core][sampling][chi2]") {
+TEST_CASE("chi2 negative control: cosine samples fail against the uniform hemisphere pdf", "[core][sampling][chi2]" TIER_UNIT) {
   const Chi2Result wrong = sphere_chi2([](Rng& r) { return sample_cosine_hemisphere(next2(r)); },
                                        [](const Vec3& w) { return w.z > 0 ? double(uniform_hemisphere_pdf()) : 0.0; },
                                        40, 80, 1);
@@ -83,14 +84,14 @@ TEST_CASE("chi2 negative control: cosine samples fail against the uniform hemisp
   CHECK(wrong.p_value < 1e-12);
 }
 
-TEST_CASE("chi2 negative control: a 5% tilt of the uniform sphere is detected", "[core][sampling][chi2]") {
+TEST_CASE("chi2 negative control: a 5% tilt of the uniform sphere is detected", "[core][sampling][chi2]" TIER_UNIT) {
   const Chi2Result wrong = sphere_chi2([](Rng& r) { return sample_uniform_sphere(next2(r)); },
                                        [](const Vec3& w) { return (1.0 + 0.05 * w.z) / (4.0 * test::kPi64); }, 40, 80, 2);
   INFO(wrong.message);
   CHECK_FALSE(wrong.accepts(kAlpha));
 }
 
-TEST_CASE("sample_cosine_hemisphere follows cos/pi", "[core][sampling]") {
+TEST_CASE("sample_cosine_hemisphere follows cos/pi", "[core][sampling]" TIER_UNIT) {
   const Chi2Result r = sphere_chi2([](Rng& rng) { return sample_cosine_hemisphere(next2(rng)); },
                                    [](const Vec3& w) { return double(cosine_hemisphere_pdf(w.z)); }, 40, 80, 11);
   INFO(r.message);
@@ -99,14 +100,14 @@ TEST_CASE("sample_cosine_hemisphere follows cos/pi", "[core][sampling]") {
   CHECK(cosine_hemisphere_pdf(-0.5f) == 0.0f);
 }
 
-TEST_CASE("sample_uniform_sphere is uniform", "[core][sampling]") {
+TEST_CASE("sample_uniform_sphere is uniform", "[core][sampling]" TIER_UNIT) {
   const Chi2Result r = sphere_chi2([](Rng& rng) { return sample_uniform_sphere(next2(rng)); },
                                    [](const Vec3&) { return double(uniform_sphere_pdf()); }, 40, 80, 12);
   INFO(r.message);
   CHECK(r.accepts(kAlpha));
 }
 
-TEST_CASE("sample_uniform_hemisphere is uniform over z > 0", "[core][sampling]") {
+TEST_CASE("sample_uniform_hemisphere is uniform over z > 0", "[core][sampling]" TIER_UNIT) {
   const Chi2Result r = sphere_chi2([](Rng& rng) { return sample_uniform_hemisphere(next2(rng)); },
                                    [](const Vec3& w) { return w.z > 0 ? double(uniform_hemisphere_pdf()) : 0.0; },
                                    40, 80, 13);
@@ -114,7 +115,7 @@ TEST_CASE("sample_uniform_hemisphere is uniform over z > 0", "[core][sampling]")
   CHECK(r.accepts(kAlpha));
 }
 
-TEST_CASE("sample_uniform_cone is uniform inside the cone", "[core][sampling]") {
+TEST_CASE("sample_uniform_cone is uniform inside the cone", "[core][sampling]" TIER_UNIT) {
   const float cos_max = 0.8f;
   // 100 cells in cos theta put a cell edge at exactly 0.8 and 10 cells inside the cone.
   const Chi2Result r =
@@ -125,7 +126,7 @@ TEST_CASE("sample_uniform_cone is uniform inside the cone", "[core][sampling]") 
   CHECK(uniform_cone_pdf(cos_max) == Approx(1.0 / (2.0 * test::kPi64 * 0.2)));
 }
 
-TEST_CASE("sample_concentric_disk is uniform over the unit disc", "[core][sampling]") {
+TEST_CASE("sample_concentric_disk is uniform over the unit disc", "[core][sampling]" TIER_UNIT) {
   // Polar cells of equal area: r^2 in [0, 1] times phi in [0, 2 pi), density 1 / (2 pi).
   Rng rng(15);
   Histogram2D hist(0.0, 1.0, 40, 0.0, 2.0 * test::kPi64, 64);
@@ -148,7 +149,7 @@ TEST_CASE("sample_concentric_disk is uniform over the unit disc", "[core][sampli
   CHECK(sample_concentric_disk(Vec2(0.5f)) == Vec2(0.0f));
 }
 
-TEST_CASE("sample_uniform_triangle is uniform over barycentrics", "[core][sampling]") {
+TEST_CASE("sample_uniform_triangle is uniform over barycentrics", "[core][sampling]" TIER_UNIT) {
   // Grid over (b0, b1); cells below the diagonal b0 + b1 = 1 are whole, cells on it are cut in half.
   constexpr int n = 25;
   Rng rng(16);
@@ -174,7 +175,7 @@ TEST_CASE("sample_uniform_triangle is uniform over barycentrics", "[core][sampli
   CHECK(r.accepts(kAlpha));
 }
 
-TEST_CASE("Distribution1D samples in proportion to the weights and never a zero weight", "[core][sampling]") {
+TEST_CASE("Distribution1D samples in proportion to the weights and never a zero weight", "[core][sampling]" TIER_UNIT) {
   const std::vector<float> weights = {0.0f, 1.0f, 3.0f, 0.0f, 0.5f, 2.5f, 7.0f, 0.0f};
   const double total = 14.0;
   Distribution1D dist(weights.data(), weights.size());
@@ -219,7 +220,7 @@ TEST_CASE("Distribution1D samples in proportion to the weights and never a zero 
   CHECK(dist.sample(0x1.fffffep-1f) == 6);
 }
 
-TEST_CASE("Distribution1D with all weights zero falls back to uniform", "[core][sampling]") {
+TEST_CASE("Distribution1D with all weights zero falls back to uniform", "[core][sampling]" TIER_UNIT) {
   const float zeros[3] = {0, 0, 0};
   Distribution1D dist(zeros, 3);
   for (size_t i = 0; i < 3; ++i) CHECK(dist.pmf(i) == Approx(1.0 / 3.0));
@@ -228,7 +229,7 @@ TEST_CASE("Distribution1D with all weights zero falls back to uniform", "[core][
   CHECK(dist.sample(0.9f) == 2);
 }
 
-TEST_CASE("Lambertian::eval is albedo/pi on the same side and 0 across", "[core][sampling][material]") {
+TEST_CASE("Lambertian::eval is albedo/pi on the same side and 0 across", "[core][sampling][material]" TIER_UNIT) {
   const Color albedo(0.2f, 0.5f, 0.8f);
   const Lambertian lam(albedo);
   Rng rng(18);
@@ -249,7 +250,7 @@ TEST_CASE("Lambertian::eval is albedo/pi on the same side and 0 across", "[core]
   CHECK(lam.albedo() == albedo);
 }
 
-TEST_CASE("Lambertian::sample matches Lambertian::pdf on both sides", "[core][sampling][material]") {
+TEST_CASE("Lambertian::sample matches Lambertian::pdf on both sides", "[core][sampling][material]" TIER_UNIT) {
   const Color albedo(0.25f, 0.5f, 0.75f);
   const Lambertian lam(albedo);
   const Vec3 up = glm::normalize(Vec3(0.3f, -0.4f, 0.8f));

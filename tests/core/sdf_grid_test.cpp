@@ -1,6 +1,7 @@
 // SDF grids: ray hits through both backends against a brute-force march of the interpolant,
 // normals, and a sphere written as a grid against the analytic sphere.
 #include <catch2/catch.hpp>
+#include "support/tiers.h"
 #include <algorithm>
 #include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
@@ -64,7 +65,7 @@ bool brute_force(const SdfGrid& g, const Ray& ray, const Bounds& box, float& t) 
 }  // namespace
 
 TEST_CASE("sdfgrid: random rays hit a grid where a brute-force march of the interpolant does, in both backends",
-          "[sdfgrid][accel]") {
+          "[sdfgrid][accel]" TIER_UNIT) {
   // A scaled, rotated and moved grid: the transform must not change the ray's parameter.
   glm::mat4 m = glm::translate(glm::mat4(1.0f), Vec3(1.0f, -2.0f, 0.5f)) *
                 glm::rotate(glm::mat4(1.0f), 0.6f, glm::normalize(Vec3(1, 2, 3))) * glm::scale(glm::mat4(1.0f), Vec3(3.0f, 2.0f, 2.5f));
@@ -109,7 +110,7 @@ TEST_CASE("sdfgrid: random rays hit a grid where a brute-force march of the inte
   CHECK(misses > 50);
 }
 
-TEST_CASE("sdfgrid: normals point out of the surface; smooth ones are continuous across voxels", "[sdfgrid]") {
+TEST_CASE("sdfgrid: normals point out of the surface; smooth ones are continuous across voxels", "[sdfgrid]" TIER_UNIT) {
   const glm::mat4 m = glm::scale(glm::mat4(1.0f), Vec3(2.0f));
   const SdfGrid analytic = sphere_grid(16, m, 0.0f, SdfGrid::Normals::Analytic);
   const SdfGrid smooth = sphere_grid(16, m, 0.0f, SdfGrid::Normals::Smooth);

@@ -1,6 +1,7 @@
 // Ray-triangle and ray-sphere intersection against hand-computed and double-precision answers,
 // and the Primitive helpers (area, bounds, normals, surface sampling).
 #include <catch2/catch.hpp>
+#include "support/tiers.h"
 #include "core/rng.h"
 #include "core/sampling.h"
 #include "support/random.h"
@@ -32,7 +33,7 @@ long double sphere_t_reference(const Ray& ray, const Vec3& c, float r) {
 const Vec3 kA(0, 0, 0), kB(1, 0, 0), kC(0, 1, 0);
 }  // namespace
 
-TEST_CASE("intersect_triangle: known hits give t and barycentrics", "[core][shape]") {
+TEST_CASE("intersect_triangle: known hits give t and barycentrics", "[core][shape]" TIER_UNIT) {
   float t = -1, u = -1, v = -1;
   Ray ray{Vec3(0.25f, 0.5f, 1.0f), Vec3(0, 0, -1)};
   REQUIRE(intersect_triangle(ray, kA, kB, kC, kInfinity, t, u, v));
@@ -60,7 +61,7 @@ TEST_CASE("intersect_triangle: known hits give t and barycentrics", "[core][shap
   CHECK(glm::length(hit - from_bary) < 1e-5f);
 }
 
-TEST_CASE("intersect_triangle: misses", "[core][shape]") {
+TEST_CASE("intersect_triangle: misses", "[core][shape]" TIER_UNIT) {
   float t, u, v;
   // Just outside the hypotenuse, outside each of the other two edges.
   CHECK_FALSE(intersect_triangle(Ray{Vec3(0.501f, 0.5f, 1), Vec3(0, 0, -1)}, kA, kB, kC, kInfinity, t, u, v));
@@ -79,7 +80,7 @@ TEST_CASE("intersect_triangle: misses", "[core][shape]") {
   CHECK(intersect_triangle(down, kA, kB, kC, 1.0001f, t, u, v));
 }
 
-TEST_CASE("intersect_triangle: a ray in the plane of the triangle misses", "[core][shape]") {
+TEST_CASE("intersect_triangle: a ray in the plane of the triangle misses", "[core][shape]" TIER_UNIT) {
   float t, u, v;
   for (const Vec3 d : {Vec3(1, 0, 0), Vec3(0, 1, 0), glm::normalize(Vec3(0.6f, 0.8f, 0)), glm::normalize(Vec3(1, -1, 0))}) {
     for (const Vec3 o : {Vec3(-1, 0.25f, 0), Vec3(0.2f, -1, 0), Vec3(0.25f, 0.25f, 0), Vec3(2, 2, 0)}) {
@@ -89,7 +90,7 @@ TEST_CASE("intersect_triangle: a ray in the plane of the triangle misses", "[cor
   }
 }
 
-TEST_CASE("intersect_sphere: hits from outside, misses, hits from the centre", "[core][shape]") {
+TEST_CASE("intersect_sphere: hits from outside, misses, hits from the centre", "[core][shape]" TIER_UNIT) {
   float t = -1;
   const Vec3 c(1, 2, 3);
   const float r = 0.5f;
@@ -116,7 +117,7 @@ TEST_CASE("intersect_sphere: hits from outside, misses, hits from the centre", "
   CHECK_FALSE(intersect_sphere(Ray{Vec3(0), Vec3(0, 0, 1)}, Vec3(0), 1.0f, 0.999f, t));
 }
 
-TEST_CASE("intersect_sphere: rays leaving the surface do not hit it again", "[core][shape]") {
+TEST_CASE("intersect_sphere: rays leaving the surface do not hit it again", "[core][shape]" TIER_UNIT) {
   Rng rng(4);
   int inward_misses = 0, outward_hits = 0, diameter_errors = 0, chord_errors = 0;
   for (int k = 0; k < 20000; ++k) {
@@ -156,7 +157,7 @@ TEST_CASE("intersect_sphere: rays leaving the surface do not hit it again", "[co
   CHECK(chord_errors == 0);
 }
 
-TEST_CASE("intersect_sphere: tangent rays", "[core][shape]") {
+TEST_CASE("intersect_sphere: tangent rays", "[core][shape]" TIER_UNIT) {
   float t;
   const Vec3 c(0.0f);
   CHECK_FALSE(intersect_sphere(Ray{Vec3(0, 1.0001f, -5), Vec3(0, 0, 1)}, c, 1.0f, kInfinity, t));
@@ -166,7 +167,7 @@ TEST_CASE("intersect_sphere: tangent rays", "[core][shape]") {
   CHECK(t == Approx(5.0 - std::sqrt(1.0 - 0.9999 * 0.9999)).epsilon(1e-5));
 }
 
-TEST_CASE("intersect_sphere: huge radius acts as a plane", "[core][shape]") {
+TEST_CASE("intersect_sphere: huge radius acts as a plane", "[core][shape]" TIER_UNIT) {
   float t;
   // Ground sphere of radius 1e5 with its top at y = 0, seen from just above.
   const Vec3 c(0, -1e5f, 0);
@@ -195,7 +196,7 @@ TEST_CASE("intersect_sphere: huge radius acts as a plane", "[core][shape]") {
   CHECK(double(t) == Approx(double(sphere_t_reference(oblique, Vec3(0, 0, 1e6f), 1e5f))).epsilon(1e-6));
 }
 
-TEST_CASE("Primitive: area, bounds, centroid", "[core][shape]") {
+TEST_CASE("Primitive: area, bounds, centroid", "[core][shape]" TIER_UNIT) {
   const Primitive tri = Primitive::triangle(Vec3(1, 1, 1), Vec3(3, 1, 1), Vec3(1, 4, 1));
   CHECK(tri.area() == Approx(3.0f));
   CHECK(tri.bounds().lo == Vec3(1, 1, 1));
@@ -211,7 +212,7 @@ TEST_CASE("Primitive: area, bounds, centroid", "[core][shape]") {
   CHECK(sph.bounds().surface_area() == Approx(6 * 16.0));
 }
 
-TEST_CASE("Primitive: normal_at follows the winding and flip", "[core][shape]") {
+TEST_CASE("Primitive: normal_at follows the winding and flip", "[core][shape]" TIER_UNIT) {
   Primitive tri = Primitive::triangle(kA, kB, kC);  // counter-clockwise seen from +z
   CHECK(glm::length(tri.normal_at(Vec3(0.2f, 0.2f, 0)) - Vec3(0, 0, 1)) < 1e-6f);
   tri.flip = true;
@@ -226,7 +227,7 @@ TEST_CASE("Primitive: normal_at follows the winding and flip", "[core][shape]") 
   CHECK(glm::length(sph.normal_at(Vec3(1, 1, 1) + 2.0f * n) + n) < 1e-6f);
 }
 
-TEST_CASE("Primitive: sample_point lies on the shape", "[core][shape]") {
+TEST_CASE("Primitive: sample_point lies on the shape", "[core][shape]" TIER_UNIT) {
   Rng rng(6);
   const Vec3 p0(1, 2, 3), p1(4, 1, 2), p2(2, 5, 1);
   Primitive tri = Primitive::triangle(p0, p1, p2);
@@ -273,7 +274,7 @@ struct Octahedron {
 };
 }  // namespace
 
-TEST_CASE("intersect_triangle: random rays from inside a closed mesh never escape", "[core][shape]") {
+TEST_CASE("intersect_triangle: random rays from inside a closed mesh never escape", "[core][shape]" TIER_UNIT) {
   const Octahedron mesh;
   Rng rng(10);
   int escaped = 0;
@@ -286,7 +287,7 @@ TEST_CASE("intersect_triangle: random rays from inside a closed mesh never escap
 
 // Regression: plain Moller-Trumbore let about 12% of rays aimed at shared edges pass between
 // the two triangles; the barycentric tests now have a little slack.
-TEST_CASE("intersect_triangle: rays aimed at shared edges of a closed mesh do not escape", "[core][regression]") {
+TEST_CASE("intersect_triangle: rays aimed at shared edges of a closed mesh do not escape", "[core][regression]" TIER_UNIT) {
   const Octahedron mesh;
   Rng rng(11);
   int escaped = 0;
@@ -302,7 +303,7 @@ TEST_CASE("intersect_triangle: rays aimed at shared edges of a closed mesh do no
   CHECK(escaped == 0);
 }
 
-TEST_CASE("shading point: dp/du and dp/dv of spheres and UV-mapped triangles match finite differences", "[core][shape]") {
+TEST_CASE("shading point: dp/du and dp/dv of spheres and UV-mapped triangles match finite differences", "[core][shape]" TIER_UNIT) {
   // A sphere (u = phi / 2 pi, v = theta / pi about +z) and a quad whose uvs are stretched and
   // sheared against its edges.
   const LoadedScene loaded = parse_scene(R"({"camera": {"position": [0, 0, 9], "look_at": [0, 0, 0]},

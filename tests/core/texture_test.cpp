@@ -2,6 +2,7 @@
 // OpenImageIO's TextureSystem (orientation, wrap modes, sRGB), sphere UVs, OBJ vt/vn,
 // face_normals, and the errors for missing or unreadable texture files.
 #include <catch2/catch.hpp>
+#include "support/tiers.h"
 #include <OpenImageIO/imageio.h>
 #include <vector>
 #include "io/image_io.h"
@@ -15,7 +16,7 @@
 using namespace caustica;
 using Catch::Matchers::Contains;
 
-TEST_CASE("checkerboard: color0 where u and v fall in the same half, to_uv scales and shifts", "[core][texture]") {
+TEST_CASE("checkerboard: color0 where u and v fall in the same half, to_uv scales and shifts", "[core][texture]" TIER_UNIT) {
   const CheckerboardTexture plain(Color(1, 0, 0), Color(0, 0, 1), UvTransform{});
   CHECK(plain.eval(Vec2(0.75f, 0.75f)) == plain.eval(Vec2(0.25f, 0.25f)));
   CHECK(plain.eval(Vec2(0.75f, 0.25f)) != plain.eval(Vec2(0.25f, 0.25f)));
@@ -27,14 +28,14 @@ TEST_CASE("checkerboard: color0 where u and v fall in the same half, to_uv scale
   CHECK(tiled.eval(Vec2(0.1875f, 0.0625f)) == plain.eval(Vec2(0.75f, 0.25f)));
 }
 
-TEST_CASE("checkerboard: Mitsuba's colours, color0 where (u > 1/2) == (v > 1/2)", "[core][texture]") {
+TEST_CASE("checkerboard: Mitsuba's colours, color0 where (u > 1/2) == (v > 1/2)", "[core][texture]" TIER_UNIT) {
   const CheckerboardTexture t(Color(1, 0, 0), Color(0, 0, 1), UvTransform{});
   CHECK(t.eval(Vec2(0.25f, 0.25f)) == Color(1, 0, 0));
   CHECK(t.eval(Vec2(0.75f, 0.75f)) == Color(1, 0, 0));
   CHECK(t.eval(Vec2(0.75f, 0.25f)) == Color(0, 0, 1));
 }
 
-TEST_CASE("bitmap: (0, 0) is the top-left pixel, repeat, mirror and clamp wrap as named", "[core][texture]") {
+TEST_CASE("bitmap: (0, 0) is the top-left pixel, repeat, mirror and clamp wrap as named", "[core][texture]" TIER_UNIT) {
   test::TempDir dir;
   Image img(4, 2);  // top row: 0.1, 0.2, 0.3, 0.4; bottom row: 0.5 .. 0.8 (red channel)
   for (int y = 0; y < 2; ++y) {
@@ -58,7 +59,7 @@ TEST_CASE("bitmap: (0, 0) is the top-left pixel, repeat, mirror and clamp wrap a
   CHECK(bilinear.eval(Vec2(0.25f, 0.25f)).z == Approx(1.0f).margin(1e-4));
 }
 
-TEST_CASE("bitmap: 8-bit images are decoded from sRGB unless raw", "[core][texture]") {
+TEST_CASE("bitmap: 8-bit images are decoded from sRGB unless raw", "[core][texture]" TIER_UNIT) {
   test::TempDir dir;
   Image img(1, 1);
   img.pixels[0] = Color(0.5f);  // written as sRGB 8-bit: linear 0.5 -> 188/255 -> read back 0.5
@@ -88,7 +89,7 @@ std::string write_png_with_alpha(const test::TempDir& dir, const std::string& na
 }  // namespace
 
 TEST_CASE("bitmap: alpha is dropped, grey-alpha reads as grey and RGBA as RGB, colour not multiplied by alpha",
-          "[core][texture]") {
+          "[core][texture]" TIER_UNIT) {
   // Mitsuba's leaf mask (docs/scenes/bsdf_mask_after.xml) is grey-alpha: grey was read as red and
   // alpha as green, so the mask's opacity came out about half everywhere.
   test::TempDir dir;
@@ -117,7 +118,7 @@ LoadedScene load(const test::TempDir& dir, const std::string& objects, const std
 const char* kWhite = R"({"white": {"type": "diffuse"}})";
 }  // namespace
 
-TEST_CASE("sphere UVs: u = phi / 2 pi around z, v = theta / pi from +z", "[core][texture]") {
+TEST_CASE("sphere UVs: u = phi / 2 pi around z, v = theta / pi from +z", "[core][texture]" TIER_UNIT) {
   test::TempDir dir;
   LoadedScene s = load(dir, R"([{"type": "sphere", "center": [1, 2, 3], "radius": 2, "material": "white"}])", kWhite);
   SurfaceHit hit;
@@ -130,7 +131,7 @@ TEST_CASE("sphere UVs: u = phi / 2 pi around z, v = theta / pi from +z", "[core]
   CHECK(hit.sp.uv.x == Approx(0.25f).margin(1e-3));
 }
 
-TEST_CASE("OBJ: vt becomes (u, 1 - v), vn is interpolated, face_normals turns it off", "[core][texture]") {
+TEST_CASE("OBJ: vt becomes (u, 1 - v), vn is interpolated, face_normals turns it off", "[core][texture]" TIER_UNIT) {
   test::TempDir dir;
   // A unit square in the z = 0 plane facing -z, with normals bent outwards along x.
   dir.write("sq.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"
@@ -154,7 +155,7 @@ TEST_CASE("OBJ: vt becomes (u, 1 - v), vn is interpolated, face_normals turns it
   CHECK(hit.sp.uv.y == Approx(0.25f).margin(1e-4));  // UVs stay
 }
 
-TEST_CASE("quads carry UVs along their edges, a textured material reads them", "[core][texture]") {
+TEST_CASE("quads carry UVs along their edges, a textured material reads them", "[core][texture]" TIER_UNIT) {
   test::TempDir dir;
   LoadedScene s = load(dir, R"([{"type": "quad", "origin": [0, 0, 0], "edge1": [2, 0, 0], "edge2": [0, 4, 0], "material": "check"}])",
                        R"({"check": {"type": "diffuse", "reflectance": {"type": "checkerboard", "color0": [0.8, 0, 0], "color1": [0, 0, 0.8]}}})");
@@ -167,7 +168,7 @@ TEST_CASE("quads carry UVs along their edges, a textured material reads them", "
   CHECK(hit.material->albedo(hit.sp) == Color(0.8f, 0, 0));
 }
 
-TEST_CASE("textures: missing and unreadable files, unknown types and keys are errors", "[core][texture]") {
+TEST_CASE("textures: missing and unreadable files, unknown types and keys are errors", "[core][texture]" TIER_UNIT) {
   test::TempDir dir;
   const std::string quad = R"([{"type": "quad", "origin": [0, 0, 0], "edge1": [1, 0, 0], "edge2": [0, 1, 0], "material": "m"}])";
   auto with = [&](const std::string& tex) {
@@ -213,7 +214,7 @@ TEST_CASE("textures: missing and unreadable files, unknown types and keys are er
                     Contains("bad.obj:1") && Contains("\"nan\" is not a finite number"));
 }
 
-TEST_CASE("shading frames follow dp/du: along phi on spheres, along edge1 on quads", "[core][texture]") {
+TEST_CASE("shading frames follow dp/du: along phi on spheres, along edge1 on quads", "[core][texture]" TIER_UNIT) {
   test::TempDir dir;
   LoadedScene s = load(dir, R"([{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "white"},
                                 {"type": "quad", "origin": [5, -1, 0], "edge1": [0, 2, 0], "edge2": [2, 0, 0], "material": "white"}])", kWhite);
@@ -226,7 +227,7 @@ TEST_CASE("shading frames follow dp/du: along phi on spheres, along edge1 on qua
   CHECK(std::abs(hit.frame.t.x) == Approx(1.0f).margin(1e-5));
 }
 
-TEST_CASE("bitmap: the gradient is the bilinear lookup's derivative, through sRGB decoding and to_uv", "[core][texture]") {
+TEST_CASE("bitmap: the gradient is the bilinear lookup's derivative, through sRGB decoding and to_uv", "[core][texture]" TIER_UNIT) {
   test::TempDir dir;
   Image img(5, 3);
   Rng rng(17);
@@ -267,7 +268,7 @@ TEST_CASE("bitmap: the gradient is the bilinear lookup's derivative, through sRG
   CHECK(g == Vec2(0.0f));
 }
 
-TEST_CASE("textures: bitmaps of one file share its texels; a file rewritten is read again", "[core][texture]") {
+TEST_CASE("textures: bitmaps of one file share its texels; a file rewritten is read again", "[core][texture]" TIER_UNIT) {
   test::TempDir dir;
   const std::string quad = R"([{"type": "quad", "origin": [-1, -1, 0], "edge1": [2, 0, 0], "edge2": [0, 2, 0], "material": "a"},
       {"type": "quad", "origin": [3, -1, 0], "edge1": [2, 0, 0], "edge2": [0, 2, 0], "material": "b"}])";

@@ -2,6 +2,7 @@
 // no temporary is left, a full disk is an error (simulated with RLIMIT_FSIZE: writes past the
 // limit fail as on a full disk), and a set of files appears together or not at all.
 #include <catch2/catch.hpp>
+#include "support/tiers.h"
 #include <csignal>
 #include <filesystem>
 #include <sys/resource.h>
@@ -55,7 +56,7 @@ Image noise(int w, int h) {
 }
 }  // namespace
 
-TEST_CASE("atomic files: the content appears under the name, and no temporary is left", "[io][atomic]") {
+TEST_CASE("atomic files: the content appears under the name, and no temporary is left", "[io][atomic]" TIER_UNIT) {
   test::TempDir dir;
   write_file_atomically(dir.file("a.txt"), "hello", "text");
   CHECK(test::read_text(dir.file("a.txt")) == "hello");
@@ -80,7 +81,7 @@ TEST_CASE("atomic files: the content appears under the name, and no temporary is
   CHECK(entries(dir.path()) == 2);
 }
 
-TEST_CASE("atomic files: a full disk is an error and the old file stays whole", "[io][atomic]") {
+TEST_CASE("atomic files: a full disk is an error and the old file stays whole", "[io][atomic]" TIER_UNIT) {
   test::TempDir dir;
   const std::string good(5000, 'g');
   write_file_atomically(dir.file("out.txt"), good, "text");
@@ -93,7 +94,7 @@ TEST_CASE("atomic files: a full disk is an error and the old file stays whole", 
   CHECK(entries(dir.path()) == 1);
 }
 
-TEST_CASE("atomic files: images of every format fail whole on a full disk", "[io][atomic][image]") {
+TEST_CASE("atomic files: images of every format fail whole on a full disk", "[io][atomic][image]" TIER_UNIT) {
   test::TempDir dir;
   const Image img = noise(64, 48);
   for (const char* ext : {".png", ".hdr", ".exr", ".pfm"}) {
@@ -112,7 +113,7 @@ TEST_CASE("atomic files: images of every format fail whole on a full disk", "[io
   CHECK(entries(dir.path()) == 4);
 }
 
-TEST_CASE("atomic files: a set appears together or not at all", "[io][atomic]") {
+TEST_CASE("atomic files: a set appears together or not at all", "[io][atomic]" TIER_UNIT) {
   test::TempDir dir;
   {
     AtomicFileSet set;

@@ -1,6 +1,7 @@
 // Bsdf blocks with Mitsuba 3's names: what each type builds, the named indices, and the
 // errors for bad values (each naming the file and the JSON pointer).
 #include <catch2/catch.hpp>
+#include "support/tiers.h"
 #include "io/bsdf_reader.h"
 #include "core/bsdf/conductor.h"
 #include "core/bsdf/dielectric.h"
@@ -26,7 +27,7 @@ std::unique_ptr<Bsdf> read(const std::string& text, std::vector<std::string>* wa
 const Vec3 kUp(0.0f, 0.0f, 1.0f);
 }  // namespace
 
-TEST_CASE("materials: each type has its lobe flags", "[core][bsdf_reader]") {
+TEST_CASE("materials: each type has its lobe flags", "[core][bsdf_reader]" TIER_UNIT) {
   CHECK(read(R"({"type": "diffuse", "reflectance": 0.5})")->flags() == (kBsdfDiffuse | kBsdfReflection));
   CHECK(read(R"({"type": "diffuse", "albedo": [0.1, 0.2, 0.3]})")->albedo() == Color(0.1f, 0.2f, 0.3f));
   CHECK(read(R"({"type": "conductor", "material": "Au"})")->flags() == (kBsdfSpecular | kBsdfReflection));
@@ -45,7 +46,7 @@ TEST_CASE("materials: each type has its lobe flags", "[core][bsdf_reader]") {
   CHECK(two->flags() == (kBsdfDiffuse | kBsdfReflection | kBsdfSpecular));
 }
 
-TEST_CASE("materials: photon mapping's gather rule follows the glossy threshold", "[core][bsdf_reader]") {
+TEST_CASE("materials: photon mapping's gather rule follows the glossy threshold", "[core][bsdf_reader]" TIER_UNIT) {
   CHECK(is_gather_surface(*read(R"({"type": "diffuse"})"), 0.3f));
   CHECK_FALSE(is_gather_surface(*read(R"({"type": "conductor"})"), 0.0f));
   const auto rough = read(R"({"type": "roughconductor", "alpha": 0.2})");
@@ -56,7 +57,7 @@ TEST_CASE("materials: photon mapping's gather rule follows the glossy threshold"
   CHECK_FALSE(is_gather_surface(*read(R"({"type": "roughdielectric", "alpha": 0.8})"), 0.3f));
 }
 
-TEST_CASE("materials: named indices of refraction", "[core][bsdf_reader]") {
+TEST_CASE("materials: named indices of refraction", "[core][bsdf_reader]" TIER_UNIT) {
   // Two dielectrics whose eta differ only by name versus number reflect the same.
   const auto named = read(R"({"type": "dielectric", "int_ior": "diamond", "ext_ior": "vacuum"})");
   const auto numeric = read(R"({"type": "dielectric", "int_ior": 2.419, "ext_ior": 1.0})");
@@ -81,7 +82,7 @@ TEST_CASE("materials: named indices of refraction", "[core][bsdf_reader]") {
   CHECK(e.weight.y == Approx(g.weight.y));
 }
 
-TEST_CASE("materials: bad values are errors naming the file and the key", "[core][bsdf_reader]") {
+TEST_CASE("materials: bad values are errors naming the file and the key", "[core][bsdf_reader]" TIER_UNIT) {
   CHECK_THROWS_WITH(read(R"({"type": "conductor", "material": "Unobtainium"})"),
                     Contains("m.json: /materials/x/material") && Contains("unknown conductor \"Unobtainium\"") &&
                         Contains("Au") && Contains("Ni"));

@@ -1,5 +1,6 @@
 // Mitsuba's curve files: every fault an error naming the file and the line; the reader fuzzed.
 #include <catch2/catch.hpp>
+#include "support/tiers.h"
 #include <cmath>
 #include "core/error.h"
 #include "core/rng.h"
@@ -11,7 +12,7 @@
 
 using namespace caustica;
 
-TEST_CASE("curve files: each fault is an error naming the file and the line", "[curve][io]") {
+TEST_CASE("curve files: each fault is an error naming the file and the line", "[curve][io]" TIER_UNIT) {
   const auto curves = parse_curves("-1 0.1 0.1 0.5\n1 1.4 1.2 0.5\n\n-1 5 2.2 1\n-2.3 4 2.3 2\n4 1 2.2 5\n", "c.txt", 2);
   REQUIRE(curves.size() == 2);
   CHECK(curves[0].size() == 2);
@@ -28,7 +29,7 @@ TEST_CASE("curve files: each fault is an error naming the file and the line", "[
   CHECK_THAT(test::error_of([] { read_curve_file("/nonexistent/c.txt", 2); }), Catch::Contains("/nonexistent/c.txt"));
 }
 
-TEST_CASE("curve files: random corruptions never crash the reader (fuzz)", "[curve][io][fuzz]") {
+TEST_CASE("curve files: random corruptions never crash the reader (fuzz)", "[curve][io][fuzz]" TIER_UNIT) {
   const std::string good = "-1 0.1 0.1 0.5\n1 1.4 1.2 0.5\n\n-1 5 2.2 1\n-2.3 4 2.3 2\n4 1 2.2 5\n";
   Rng rng(5);
   int errors = 0;
@@ -47,7 +48,7 @@ TEST_CASE("curve files: random corruptions never crash the reader (fuzz)", "[cur
 }
 
 TEST_CASE("linearcurve: Mitsuba's linearcurve in an instance: positions by both transforms, radii as written",
-          "[curve][io][mitsuba]") {
+          "[curve][io][mitsuba]" TIER_UNIT) {
   test::TempDir dir;
   dir.write("wire.txt", "0 0 0 0.1\n1 0 0 0.1\n\n0 0 1 0.05\n0.5 0 1 0.05\n1 0 1 0.05\n");
   const std::string xml = dir.write("scene.xml", R"(<scene version="3.0.0">
@@ -75,7 +76,7 @@ TEST_CASE("linearcurve: Mitsuba's linearcurve in an instance: positions by both 
   CHECK_THAT(test::error_of([&] { load_scene(bad); }), Catch::Contains("bad.txt:4") && Catch::Contains("at least 2"));
 }
 
-TEST_CASE("bsplinecurve: Mitsuba's bsplinecurve: n - 3 segments a curve, hit on the spline's sweep", "[curve][io][mitsuba]") {
+TEST_CASE("bsplinecurve: Mitsuba's bsplinecurve: n - 3 segments a curve, hit on the spline's sweep", "[curve][io][mitsuba]" TIER_UNIT) {
   test::TempDir dir;
   // A straight spline along x: control points at x = -1, 0, 1, 2, 3 make two segments covering
   // x in [0, 2] (a uniform cubic B-spline of equally spaced points is the line between the

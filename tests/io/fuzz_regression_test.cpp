@@ -1,6 +1,7 @@
 // Scene-loader fuzz regressions: inputs the fuzzer (fuzz/scene_fuzzer.cpp) or a hand found nasty
 // must load or be rejected with InputError, never crash, hang or throw anything else.
 #include <catch2/catch.hpp>
+#include "support/tiers.h"
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -33,7 +34,7 @@ const std::string kHead = R"({"camera": {"position": [0, 0, -5], "look_at": [0, 
   "objects": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "w"})";
 }  // namespace
 
-TEST_CASE("fuzz regressions: every input in tests/data/fuzz loads or is rejected", "[core][fuzz]") {
+TEST_CASE("fuzz regressions: every input in tests/data/fuzz loads or is rejected", "[core][fuzz]" TIER_UNIT) {
   size_t count = 0;
   for (const auto& entry : std::filesystem::directory_iterator(CAUSTICA_SOURCE_DIR "/tests/data/fuzz")) {
     if (!entry.is_regular_file()) continue;
@@ -61,7 +62,7 @@ TEST_CASE("fuzz regressions: every input in tests/data/fuzz loads or is rejected
   CHECK(count >= 10);
 }
 
-TEST_CASE("fuzz regressions: large generated inputs", "[core][fuzz]") {
+TEST_CASE("fuzz regressions: large generated inputs", "[core][fuzz]" TIER_UNIT) {
   SECTION("100000 nested arrays: an error with a position, not a stack overflow") {
     const std::string open(100000, '[');
     REQUIRE_THROWS_WITH(parse_scene(open, "fuzz.json", kNoMeshDir),

@@ -1,6 +1,7 @@
 // Image files (io/image_io.h): round trips through EXR, PFM and PNG, exposure, output-path checks, atomic
 // writes (no temporary left behind) and unreadable inputs.
 #include <catch2/catch.hpp>
+#include "support/tiers.h"
 #include <filesystem>
 #include "io/image_io.h"
 #include "io/json_reader.h"
@@ -56,7 +57,7 @@ void check_exact_round_trip(const std::vector<std::string>& names) {
 }
 }  // namespace
 
-TEST_CASE("image: EXR round trip is exact", "[core][image]") {
+TEST_CASE("image: EXR round trip is exact", "[core][image]" TIER_UNIT) {
   check_exact_round_trip({"a.exr", "UPPER.EXR"});
   test::TempDir dir;
   const Image img = test_image(7, 5, -2.0f, 50.0f, 1);
@@ -66,9 +67,9 @@ TEST_CASE("image: EXR round trip is exact", "[core][image]") {
 }
 
 // Regression: OpenImageIO 2.4 (Debian 12) has no PFM writer; PFM is written by hand.
-TEST_CASE("image: PFM round trip is exact", "[core][regression]") { check_exact_round_trip({"a.pfm"}); }
+TEST_CASE("image: PFM round trip is exact", "[core][regression]" TIER_UNIT) { check_exact_round_trip({"a.pfm"}); }
 
-TEST_CASE("image: a hand-written PFM reads exactly, bottom row first", "[core][image]") {
+TEST_CASE("image: a hand-written PFM reads exactly, bottom row first", "[core][image]" TIER_UNIT) {
   test::TempDir dir;
   // PFM: "PF", width height, scale (negative: little endian), rows from the bottom up.
   std::string pfm = "PF\n3 2\n-1.0\n";
@@ -86,7 +87,7 @@ TEST_CASE("image: a hand-written PFM reads exactly, bottom row first", "[core][i
   CHECK(img.at(2, 1) == Color(7, 8, 9));
 }
 
-TEST_CASE("image: HDR round trip keeps about 1% precision", "[core][image]") {
+TEST_CASE("image: HDR round trip keeps about 1% precision", "[core][image]" TIER_UNIT) {
   test::TempDir dir;
   const Image img = test_image(6, 4, 0.01f, 20.0f, 2);
   write_image(dir.file("a.hdr"), img);
@@ -101,7 +102,7 @@ TEST_CASE("image: HDR round trip keeps about 1% precision", "[core][image]") {
   }
 }
 
-TEST_CASE("image: PNG round trip within one sRGB step", "[core][image]") {
+TEST_CASE("image: PNG round trip within one sRGB step", "[core][image]" TIER_UNIT) {
   test::TempDir dir;
   Image img = test_image(9, 3, 0.0f, 1.0f, 3);
   img.at(0, 0) = Color(0.0f, 1.0f, 0.5f);
@@ -136,7 +137,7 @@ TEST_CASE("image: PNG round trip within one sRGB step", "[core][image]") {
   CHECK(leftovers(dir.path()).empty());
 }
 
-TEST_CASE("image: PNG exposure +1 stop doubles the linear value", "[core][image]") {
+TEST_CASE("image: PNG exposure +1 stop doubles the linear value", "[core][image]" TIER_UNIT) {
   test::TempDir dir;
   Image img(4, 1);
   const float values[4] = {0.05f, 0.1f, 0.2f, 0.4f};
@@ -157,7 +158,7 @@ TEST_CASE("image: PNG exposure +1 stop doubles the linear value", "[core][image]
   CHECK(up.at(3, 0).b == Approx(0.8f).margin(0.005f));
 }
 
-TEST_CASE("image: check_output_path", "[core][image]") {
+TEST_CASE("image: check_output_path", "[core][image]" TIER_UNIT) {
   test::TempDir dir;
   CHECK(is_supported_image_path("x.exr"));
   CHECK(is_supported_image_path("dir/x.PNG"));
@@ -180,7 +181,7 @@ TEST_CASE("image: check_output_path", "[core][image]") {
   CHECK_FALSE(std::filesystem::exists(dir.file("x.bmp")));
 }
 
-TEST_CASE("image: writing replaces an existing file and leaves no temporary", "[core][image]") {
+TEST_CASE("image: writing replaces an existing file and leaves no temporary", "[core][image]" TIER_UNIT) {
   test::TempDir dir;
   const std::string path = dir.file("out.exr");
   write_image(path, test_image(3, 3, 0, 1, 4));
@@ -196,7 +197,7 @@ TEST_CASE("image: writing replaces an existing file and leaves no temporary", "[
   CHECK(leftovers(dir.path()).empty());
 }
 
-TEST_CASE("image: unreadable files are input errors", "[core][image]") {
+TEST_CASE("image: unreadable files are input errors", "[core][image]" TIER_UNIT) {
   test::TempDir dir;
   REQUIRE_THROWS_AS(read_image(dir.file("missing.exr")), InputError);
   REQUIRE_THROWS_WITH(read_image(dir.file("missing.exr")), Contains("missing.exr"));
@@ -218,7 +219,7 @@ TEST_CASE("image: unreadable files are input errors", "[core][image]") {
   REQUIRE_THROWS_AS(read_image(dir.path().string()), InputError);
 }
 
-TEST_CASE("image: mean", "[core][image]") {
+TEST_CASE("image: mean", "[core][image]" TIER_UNIT) {
   Image img(2, 2);
   img.at(0, 0) = Color(1, 2, 3);
   img.at(1, 1) = Color(3, 2, 1);

@@ -1,6 +1,7 @@
 // Mesh attributes (issue 24): PLY vertex and face properties grouped and converted as
 // Mitsuba 3's PLY reader does, and the mesh_attribute texture that reads them at a hit.
 #include <catch2/catch.hpp>
+#include "support/tiers.h"
 #include <cmath>
 #include <cstring>
 #include "core/scene.h"
@@ -41,7 +42,7 @@ void put(std::string& out, T v) {
 
 }  // namespace
 
-TEST_CASE("mesh attributes: PLY properties are grouped and named as Mitsuba's reader does", "[mesh][texture]") {
+TEST_CASE("mesh attributes: PLY properties are grouped and named as Mitsuba's reader does", "[mesh][texture]" TIER_UNIT) {
   // Vertex: red green blue (alpha dropped) make vertex_color; foo_x/y/z vertex_foo; bar_0 a
   // one-channel vertex_bar; two fields (baz_r baz_g), a postfix that cannot start a run (n_q)
   // and names without a postfix are skipped. Face: r g b make face_color, id_1 face_id.
@@ -112,7 +113,7 @@ end_header
   CHECK(id.at(2, b) == Color(0.75f));
 }
 
-TEST_CASE("mesh attributes: binary PLY integers of every width normalise as Mitsuba's do", "[mesh][texture]") {
+TEST_CASE("mesh attributes: binary PLY integers of every width normalise as Mitsuba's do", "[mesh][texture]" TIER_UNIT) {
   // ushort w_x over 65535, signed char s_x over 127 (negative values keep their sign).
   std::string ply =
       "ply\nformat binary_big_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
@@ -142,7 +143,7 @@ TEST_CASE("mesh attributes: binary PLY integers of every width normalise as Mits
   CHECK(sa.values[1] == Color(1.0f));
 }
 
-TEST_CASE("mesh attributes: a PLY with two face elements is an error (their attributes would not line up)", "[mesh][texture]") {
+TEST_CASE("mesh attributes: a PLY with two face elements is an error (their attributes would not line up)", "[mesh][texture]" TIER_UNIT) {
   const std::string ply =
       "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
       "element face 1\nproperty list uchar int vertex_indices\nproperty uchar r\nproperty uchar g\nproperty uchar b\n"
@@ -151,7 +152,7 @@ TEST_CASE("mesh attributes: a PLY with two face elements is an error (their attr
   CHECK(error_of([&] { parse_ply(ply, "two.ply"); }) == "two.ply:19: a second face element");
 }
 
-TEST_CASE("mesh attributes: a non-finite property is an error naming the element", "[mesh][texture]") {
+TEST_CASE("mesh attributes: a non-finite property is an error naming the element", "[mesh][texture]" TIER_UNIT) {
   const std::string ply =
       "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
       "property float q_x\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
@@ -191,7 +192,7 @@ Color albedo_at(const Scene& s, const Vec3& origin) {
 
 }  // namespace
 
-TEST_CASE("mesh attributes: the texture reads the hit triangle's values, interpolated or per face", "[mesh][texture]") {
+TEST_CASE("mesh attributes: the texture reads the hit triangle's values, interpolated or per face", "[mesh][texture]" TIER_UNIT) {
   const AttributeScene scene(R"({
       "a": {"type": "diffuse", "reflectance": {"type": "mesh_attribute", "name": "vertex_color", "scale": 0.5}},
       "b": {"type": "diffuse", "reflectance": {"type": "mesh_attribute", "name": "face_color"}}})");
@@ -209,7 +210,7 @@ TEST_CASE("mesh attributes: the texture reads the hit triangle's values, interpo
   check_colour(albedo_at(s, Vec3(-3, 0, 5)), 0, 0, 0);
 }
 
-TEST_CASE("mesh attributes: bad names and attributes no mesh carries are errors at their place", "[mesh][texture]") {
+TEST_CASE("mesh attributes: bad names and attributes no mesh carries are errors at their place", "[mesh][texture]" TIER_UNIT) {
   const AttributeScene prefix(R"({"a": {"type": "diffuse", "reflectance": {"type": "mesh_attribute", "name": "color"}},
       "b": {"type": "diffuse"}})");
   CHECK_THAT(error_of([&] { load_scene(prefix.path); }),
@@ -221,7 +222,7 @@ TEST_CASE("mesh attributes: bad names and attributes no mesh carries are errors 
                  Contains("no mesh in the scene carries the attribute \"vertex_normal_map\" (the meshes carry: face_color, vertex_color)"));
 }
 
-TEST_CASE("mesh attributes: a light's texture cannot be a mesh attribute", "[mesh][texture]") {
+TEST_CASE("mesh attributes: a light's texture cannot be a mesh attribute", "[mesh][texture]" TIER_UNIT) {
   test::TempDir dir;
   dir.write("v.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
                      "property float red\nproperty float green\nproperty float blue\n"
@@ -236,7 +237,7 @@ TEST_CASE("mesh attributes: a light's texture cannot be a mesh attribute", "[mes
              Contains("/lights/0/texture") && Contains("a light's texture has no mesh"));
 }
 
-TEST_CASE("mesh attributes: values beyond what a colour may hold are an error at load", "[mesh][texture]") {
+TEST_CASE("mesh attributes: values beyond what a colour may hold are an error at load", "[mesh][texture]" TIER_UNIT) {
   // 2e8 times a scale of 10 passes 1e9 (the cap on every colour and emission).
   const AttributeScene scene(R"({"a": {"type": "diffuse"},
       "b": {"type": "diffuse", "reflectance": {"type": "mesh_attribute", "name": "face_color", "scale": 5e3}}})");
@@ -252,7 +253,7 @@ TEST_CASE("mesh attributes: values beyond what a colour may hold are an error at
                  Contains("the attribute \"face_color\" reaches 1e+12 (times scale), beyond the 1e+09 a colour may hold"));
 }
 
-TEST_CASE("mesh attributes: Mitsuba scenes read mesh_attribute textures, errors name the XML line", "[mesh][texture][mitsuba]") {
+TEST_CASE("mesh attributes: Mitsuba scenes read mesh_attribute textures, errors name the XML line", "[mesh][texture][mitsuba]" TIER_UNIT) {
   test::TempDir dir;
   dir.write("v.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
                      "property float red\nproperty float green\nproperty float blue\n"

@@ -2,6 +2,7 @@
 // exactly; broken files (truncated, non-finite numbers, a shape_index out of range) are errors
 // naming the file; an OBJ's .mtl gives a JSON scene its materials and area lights.
 #include <catch2/catch.hpp>
+#include "support/tiers.h"
 #include <cmath>
 #include <cstring>
 #include <functional>
@@ -179,7 +180,7 @@ SerializedShape triangle_shape() {
 
 }  // namespace
 
-TEST_CASE("mesh files: OBJ positions, indices, normals and flipped UVs read back exactly", "[mesh]") {
+TEST_CASE("mesh files: OBJ positions, indices, normals and flipped UVs read back exactly", "[mesh]" TIER_UNIT) {
   test::TempDir dir;
   const Quad q;
   const std::string path = dir.write("quad.obj", R"(# a quad as two triangles
@@ -210,7 +211,7 @@ f 1/1/1 3/3/3 4/4/4
   CHECK(plain.attributes.empty());
 }
 
-TEST_CASE("mesh files: an OBJ with a nan, inf or garbage number names file and line", "[mesh]") {
+TEST_CASE("mesh files: an OBJ with a nan, inf or garbage number names file and line", "[mesh]" TIER_UNIT) {
   test::TempDir dir;
   const std::string nan = dir.write("nan.obj", "v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n");
   CHECK(error_of([&] { read_mesh_file(nan); }) == nan + ":2: \"nan\" is not a finite number");
@@ -230,7 +231,7 @@ TEST_CASE("mesh files: an OBJ with a nan, inf or garbage number names file and l
   CHECK_THAT(msg, Contains("/objects/0/file") && Contains("nan.obj:2: \"nan\" is not a finite number"));
 }
 
-TEST_CASE("mesh files: an OBJ face naming a vt or vn the file lacks is an error", "[mesh]") {
+TEST_CASE("mesh files: an OBJ face naming a vt or vn the file lacks is an error", "[mesh]" TIER_UNIT) {
   // Issue 23: these were ignored silently (the triangle lost its UVs or normals).
   test::TempDir dir;
   const std::string vt = dir.write("vt.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nf 1/1 2/2 3/5\n");
@@ -243,7 +244,7 @@ TEST_CASE("mesh files: an OBJ face naming a vt or vn the file lacks is an error"
   CHECK(read_mesh_file(ok).tris.size() == 2);
 }
 
-TEST_CASE("mesh files: ASCII PLY with normals and UVs reads back exactly", "[mesh]") {
+TEST_CASE("mesh files: ASCII PLY with normals and UVs reads back exactly", "[mesh]" TIER_UNIT) {
   test::TempDir dir;
   const Quad q;
   std::string text = ply_header("ascii", 4, 2);
@@ -260,14 +261,14 @@ TEST_CASE("mesh files: ASCII PLY with normals and UVs reads back exactly", "[mes
   CHECK(p.attributes.empty());
 }
 
-TEST_CASE("mesh files: binary little-endian PLY reads back exactly", "[mesh]") {
+TEST_CASE("mesh files: binary little-endian PLY reads back exactly", "[mesh]" TIER_UNIT) {
   test::TempDir dir;
   const Quad q;
   const MeshData m = read_mesh_file(dir.write("quad.ply", binary_ply(q)));
   check_quad(m, q, true, true, false);
 }
 
-TEST_CASE("mesh files: a truncated binary PLY is an error", "[mesh]") {
+TEST_CASE("mesh files: a truncated binary PLY is an error", "[mesh]" TIER_PROCESS) {
   // Run through the executable: a reader that crashes on the file fails this test instead of
   // taking the test runner down with it.
   test::TempDir dir;
@@ -289,7 +290,7 @@ TEST_CASE("mesh files: a truncated binary PLY is an error", "[mesh]") {
   }
 }
 
-TEST_CASE("mesh files: a PLY with a non-finite vertex is an error", "[mesh]") {
+TEST_CASE("mesh files: a PLY with a non-finite vertex is an error", "[mesh]" TIER_UNIT) {
   test::TempDir dir;
   Quad q;
   q.pos[1].y = std::numeric_limits<float>::quiet_NaN();
@@ -304,7 +305,7 @@ TEST_CASE("mesh files: a PLY with a non-finite vertex is an error", "[mesh]") {
   CHECK_THAT(error_of([&] { read_mesh_file(ascii); }), Contains(ascii));
 }
 
-TEST_CASE("mesh files: Mitsuba serialized shapes read back exactly and shape_index picks one", "[mesh]") {
+TEST_CASE("mesh files: Mitsuba serialized shapes read back exactly and shape_index picks one", "[mesh]" TIER_UNIT) {
   test::TempDir dir;
   const Quad q;
   const SerializedShape quad = quad_shape(q), tri = triangle_shape();
@@ -361,7 +362,7 @@ TEST_CASE("mesh files: Mitsuba serialized shapes read back exactly and shape_ind
   }
 }
 
-TEST_CASE("mesh files: a serialized shape's vertex colours are the mesh attribute vertex_color", "[mesh]") {
+TEST_CASE("mesh files: a serialized shape's vertex colours are the mesh attribute vertex_color", "[mesh]" TIER_UNIT) {
   test::TempDir dir;
   const Quad q;
   SerializedShape quad = quad_shape(q);
@@ -385,7 +386,7 @@ TEST_CASE("mesh files: a serialized shape's vertex colours are the mesh attribut
   CHECK(error_of([&] { read_mesh_file(bad); }) == bad + ": the colour of vertex 1 is not finite");
 }
 
-TEST_CASE("mesh files: a serialized shape is inflated only as far as its counts declare and memory allows", "[mesh]") {
+TEST_CASE("mesh files: a serialized shape is inflated only as far as its counts declare and memory allows", "[mesh]" TIER_PROCESS) {
   // Issue 23: a 1.2 MB file inflating to 1.2 GB reached 2.2 GB before its error.
   test::TempDir dir;
   // Counts of 2^28 vertices (3 GiB of positions) over 80 MiB of zeros: inflated past 64 MiB,
@@ -409,7 +410,7 @@ TEST_CASE("mesh files: a serialized shape is inflated only as far as its counts 
   CHECK(error_of([&] { read_mesh_file(lying); }) == lying + ": truncated while reading the vertex positions");
 }
 
-TEST_CASE("mesh files: a truncated or corrupt serialized file is an error", "[mesh]") {
+TEST_CASE("mesh files: a truncated or corrupt serialized file is an error", "[mesh]" TIER_UNIT) {
   test::TempDir dir;
   const Quad q;
   const std::string whole = serialized_shape(quad_shape(q));
@@ -445,7 +446,7 @@ TEST_CASE("mesh files: a truncated or corrupt serialized file is an error", "[me
   CHECK(error_of([&] { parse_serialized(whole.substr(0, 3), "mem", 0); }) == "mem: not a Mitsuba .serialized mesh (the file does not start with 0x041C)");
 }
 
-TEST_CASE("mesh files: an OBJ's mtl gives a JSON scene its materials and an area light", "[mesh]") {
+TEST_CASE("mesh files: an OBJ's mtl gives a JSON scene its materials and an area light", "[mesh]" TIER_UNIT) {
   test::TempDir dir;
   dir.write("lit.mtl", "newmtl white\nKd 0.5 0.25 0.125\n\nnewmtl lamp\nKd 0 0 0\nKe 2 3 4\n");
   dir.write("lit.obj", R"(mtllib lit.mtl
@@ -503,7 +504,7 @@ f 5 6 7
   CHECK(g.scene->objects.size() == 1);
 }
 
-TEST_CASE("mesh files: big-endian PLY with a quad face and an extra element reads as a fan of two triangles", "[mesh]") {
+TEST_CASE("mesh files: big-endian PLY with a quad face and an extra element reads as a fan of two triangles", "[mesh]" TIER_UNIT) {
   std::string ply =
       "ply\nformat binary_big_endian 1.0\ncomment made by hand\nelement vertex 4\nproperty double x\nproperty double y\n"
       "property double z\nelement face 1\nproperty uchar flags\nproperty list uchar uint vertex_index\n"
@@ -531,7 +532,7 @@ TEST_CASE("mesh files: big-endian PLY with a quad face and an extra element read
   CHECK_THAT(error_of([&] { parse_ply(ply.substr(0, ply.size() - 2), "be.ply"); }), Contains("truncated"));
 }
 
-TEST_CASE("mesh files: PLY errors name the line or the element", "[mesh]") {
+TEST_CASE("mesh files: PLY errors name the line or the element", "[mesh]" TIER_UNIT) {
   const std::string head = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
                            "element face 1\nproperty list uchar int vertex_indices\nend_header\n";
   CHECK(error_of([&] { parse_ply(head + "0 0 0\n1 0 0\n", "a.ply"); }) ==
@@ -551,7 +552,7 @@ TEST_CASE("mesh files: PLY errors name the line or the element", "[mesh]") {
   CHECK_THAT(error_of([&] { parse_ply("solid cube\n", "s.ply"); }), Contains("not a PLY file"));
 }
 
-TEST_CASE("mesh files: counts larger than the data are refused before anything is allocated", "[mesh]") {
+TEST_CASE("mesh files: counts larger than the data are refused before anything is allocated", "[mesh]" TIER_UNIT) {
   // A .serialized stream of a few bytes declaring 2^31 vertices.
   SerializedShape tiny;
   tiny.name = "huge";
@@ -573,7 +574,7 @@ TEST_CASE("mesh files: counts larger than the data are refused before anything i
   CHECK_THAT(error_of([&] { parse_ply(list, "l.ply"); }), Contains("items (0 to 10^6 allowed)"));
 }
 
-TEST_CASE("mesh files: smooth normals average the faces around a vertex by area", "[mesh]") {
+TEST_CASE("mesh files: smooth normals average the faces around a vertex by area", "[mesh]" TIER_UNIT) {
   // Two triangles folded at 90 degrees along the x axis: the shared vertices get the normalised
   // sum of the two face normals weighted by twice their areas.
   MeshData m;
@@ -591,7 +592,7 @@ TEST_CASE("mesh files: smooth normals average the faces around a vertex by area"
   CHECK_FALSE(m.attributes[0].has_uvs);
 }
 
-TEST_CASE("mesh files: max_smooth_angle keeps creases sharper than the angle, smooths the rest", "[mesh]") {
+TEST_CASE("mesh files: max_smooth_angle keeps creases sharper than the angle, smooths the rest", "[mesh]" TIER_UNIT) {
   // Issue 24 (Mitsuba 0.6's maxSmoothAngle): a floor triangle (normal +y) and a wall triangle
   // (normal +z) of equal area sharing the edge from vertex 0 to 1, at 90 degrees; the file's own
   // normals (all +x) are dropped.

@@ -1,5 +1,6 @@
 // The Cornell box written in Mitsuba 3's format renders like our JSON Cornell box.
 #include <catch2/catch.hpp>
+#include "support/tiers.h"
 #include "support/render_util.h"
 
 using namespace caustica;
@@ -9,7 +10,7 @@ namespace {
 glm::dvec3 image_mean(const Image& img) { return region_mean(img, 0, 0, img.width, img.height); }
 }  // namespace
 
-TEST_CASE("Mitsuba 3 Cornell box renders with path within 2 percent of the JSON Cornell box", "[mitsuba]") {
+TEST_CASE("Mitsuba 3 Cornell box renders with path within 2 percent of the JSON Cornell box", "[mitsuba]" TIER_UNIT) {
   const std::string dir = std::string(CAUSTICA_SOURCE_DIR) + "/scenes";
   const TestRender json = render_text(read_scene_file("scenes/cornell-box.json"), "path", "{}", 64, 64, 64, 3, 0, dir);
   const TestRender xml =
@@ -26,7 +27,7 @@ TEST_CASE("Mitsuba 3 Cornell box renders with path within 2 percent of the JSON 
   }
 }
 
-TEST_CASE("hide_emitters hides the emission the camera sees directly, in path and photon", "[mitsuba]") {
+TEST_CASE("hide_emitters hides the emission the camera sees directly, in path and photon", "[mitsuba]" TIER_UNIT) {
   const std::string dir = std::string(CAUSTICA_SOURCE_DIR) + "/scenes";
   const std::string scene = read_scene_file("scenes/cornell-box.json");
   for (const char* integrator : {"path", "photon"}) {

@@ -3,6 +3,7 @@
 // names, the sensor (fov_axis, mirror, crop), sampler and integrator settings, the analytic
 // shapes; and each class of error names file:line:column and the element.
 #include <catch2/catch.hpp>
+#include "support/tiers.h"
 #include <cmath>
 #include <functional>
 #include <OpenImageIO/imageio.h>
@@ -107,7 +108,7 @@ double max_value(const Image& img) {
 // ------------------------------------------------------------------------------------------
 // 1. The same scene in XML and JSON
 
-TEST_CASE("mitsuba: a scene in XML renders bit-identically to the same scene in JSON", "[mitsuba]") {
+TEST_CASE("mitsuba: a scene in XML renders bit-identically to the same scene in JSON", "[mitsuba]" TIER_UNIT) {
   const std::string xml = R"(<?xml version="1.0" encoding="utf-8"?>
 <scene version="3.0.0">
   <integrator type="path"><integer name="max_depth" value="4"/></integrator>
@@ -224,7 +225,7 @@ TEST_CASE("mitsuba: a scene in XML renders bit-identically to the same scene in 
 // ------------------------------------------------------------------------------------------
 // 2. Property types
 
-TEST_CASE("mitsuba: every property type is read with its value", "[mitsuba]") {
+TEST_CASE("mitsuba: every property type is read with its value", "[mitsuba]" TIER_UNIT) {
   const std::string xml = xml_scene(R"(  <bsdf type="diffuse" id="p">
     <integer name="i" value="-7"/>
     <float name="f" value="2.5e-1"/>
@@ -299,7 +300,7 @@ TEST_CASE("mitsuba: every property type is read with its value", "[mitsuba]") {
   check_vec(m["v2"], {4, 5, -6}, 0.0);
 }
 
-TEST_CASE("mitsuba: spectra given as wavelength:value pairs become RGB", "[mitsuba]") {
+TEST_CASE("mitsuba: spectra given as wavelength:value pairs become RGB", "[mitsuba]" TIER_UNIT) {
   const std::string xml = xml_scene(R"(
   <bsdf type="diffuse" id="grey"><spectrum name="reflectance" value="360:0.5, 830:0.5"/></bsdf>
   <bsdf type="diffuse" id="many"><spectrum name="reflectance" value="360:0.5 500:0.5, 600:0.5, 830:0.5"/></bsdf>
@@ -326,7 +327,7 @@ TEST_CASE("mitsuba: spectra given as wavelength:value pairs become RGB", "[mitsu
   CHECK(constant_spectrum_to_rgb(0.3, SpectrumUse::Reflectance) == Color(0.3f));
 }
 
-TEST_CASE("mitsuba: vectors and points as value or as x, y, z attributes are the same", "[mitsuba]") {
+TEST_CASE("mitsuba: vectors and points as value or as x, y, z attributes are the same", "[mitsuba]" TIER_UNIT) {
   const json d = translate(xml_scene(R"(
   <emitter type="point"><point name="position" value="1.5, -2, 3"/></emitter>
   <emitter type="point"><point name="position" x="1.5" y="-2" z="3"/></emitter>
@@ -343,7 +344,7 @@ TEST_CASE("mitsuba: vectors and points as value or as x, y, z attributes are the
 // ------------------------------------------------------------------------------------------
 // 3. Transforms
 
-TEST_CASE("mitsuba: transforms translate, rotate, scale, matrix and lookat", "[mitsuba]") {
+TEST_CASE("mitsuba: transforms translate, rotate, scale, matrix and lookat", "[mitsuba]" TIER_UNIT) {
   auto light_at = [](const std::string& ops) {
     const json d = translate(xml_scene("<emitter type=\"point\"><transform name=\"to_world\">" + ops + "</transform></emitter>"));
     return d["lights"][0]["position"];
@@ -418,7 +419,7 @@ TEST_CASE("mitsuba: transforms translate, rotate, scale, matrix and lookat", "[m
 // ------------------------------------------------------------------------------------------
 // 4. <default>, $name, -D, <include>, <path>, <ref>, errors, 0.6 names
 
-TEST_CASE("mitsuba: default values, $name substitution and -D", "[mitsuba]") {
+TEST_CASE("mitsuba: default values, $name substitution and -D", "[mitsuba]" TIER_UNIT) {
   const std::string xml = xml_scene(R"(  <default name="r" value="0.25"/>
   <default name="rough" value="0.4"/>
   <shape type="sphere"><float name="radius" value="$r"/></shape>
@@ -445,7 +446,7 @@ TEST_CASE("mitsuba: default values, $name substitution and -D", "[mitsuba]") {
   CHECK(translate(bad, with_defines({{"radius", "3"}}))["objects"][0]["radius"] == 3.0);
 }
 
-TEST_CASE("mitsuba: include splices the included scene in and path finds meshes", "[mitsuba]") {
+TEST_CASE("mitsuba: include splices the included scene in and path finds meshes", "[mitsuba]" TIER_UNIT) {
   test::TempDir dir;
   std::filesystem::create_directories(dir.path() / "parts");
   std::filesystem::create_directories(dir.path() / "meshes");
@@ -478,7 +479,7 @@ TEST_CASE("mitsuba: include splices the included scene in and path finds meshes"
   CHECK_THAT(error_of([&] { load_scene(missing); }), StartsWith(missing + ":2:2: <include>: included file not found: nowhere.xml"));
 }
 
-TEST_CASE("mitsuba: ref by id, named ref, unknown and duplicate ids", "[mitsuba]") {
+TEST_CASE("mitsuba: ref by id, named ref, unknown and duplicate ids", "[mitsuba]" TIER_UNIT) {
   const json d = translate(xml_scene(R"(  <texture type="checkerboard" id="tex"><rgb name="color0" value="1, 0, 0"/></texture>
   <bsdf type="diffuse" id="red"><ref name="reflectance" id="tex"/></bsdf>
   <shape type="sphere"><ref id="red"/></shape>
@@ -499,7 +500,7 @@ TEST_CASE("mitsuba: ref by id, named ref, unknown and duplicate ids", "[mitsuba]
              StartsWith("scene.xml:3:4: <bsdf type=\"conductor\" id=\"a\">: the id \"a\" is already taken (by scene.xml:2:4: "));
 }
 
-TEST_CASE("mitsuba: malformed XML, a wrong root, unknown properties and unsupported plugins", "[mitsuba]") {
+TEST_CASE("mitsuba: malformed XML, a wrong root, unknown properties and unsupported plugins", "[mitsuba]" TIER_UNIT) {
   SECTION("malformed XML names line and column") {
     const std::string msg = error_of([] { translate("<scene version=\"3.0.0\">\n  <shape type=\"sphere\">\n    <float name=\"radius\" value=\"1\">\n  </shape>\n</scene>\n"); });
     CHECK_THAT(msg, StartsWith("scene.xml:4:5: malformed XML: "));
@@ -540,7 +541,7 @@ TEST_CASE("mitsuba: malformed XML, a wrong root, unknown properties and unsuppor
   }
 }
 
-TEST_CASE("mitsuba: a 0.6 scene's camelCase names are upgraded", "[mitsuba]") {
+TEST_CASE("mitsuba: a 0.6 scene's camelCase names are upgraded", "[mitsuba]" TIER_UNIT) {
   const std::string xml = xml_scene(R"(  <integrator type="path"><integer name="maxDepth" value="3"/></integrator>
   <sensor type="perspective">
     <float name="fov" value="50"/>
@@ -580,7 +581,7 @@ TEST_CASE("mitsuba: a 0.6 scene's camelCase names are upgraded", "[mitsuba]") {
 // ------------------------------------------------------------------------------------------
 // 5. Sensor, film, sampler, integrator
 
-TEST_CASE("mitsuba: fov_axis decides what the field of view spans", "[mitsuba]") {
+TEST_CASE("mitsuba: fov_axis decides what the field of view spans", "[mitsuba]" TIER_UNIT) {
   const double t = std::tan(30.0 * kPiD / 180.0);
   auto vfov_of = [](double tan_half) { return 2.0 * std::atan(tan_half) * 180.0 / kPiD; };
   struct Case {
@@ -621,7 +622,7 @@ TEST_CASE("mitsuba: fov_axis decides what the field of view spans", "[mitsuba]")
   CHECK_THAT(none.warnings[0], Contains("no <sensor>"));
 }
 
-TEST_CASE("mitsuba: a to_world with scale x -1 mirrors the image", "[mitsuba]") {
+TEST_CASE("mitsuba: a to_world with scale x -1 mirrors the image", "[mitsuba]" TIER_UNIT) {
   auto scene_with = [](const std::string& mirror) {
     return xml_scene(R"(  <integrator type="path"><integer name="max_depth" value="2"/></integrator>
   <sensor type="perspective">
@@ -678,7 +679,7 @@ TEST_CASE("mitsuba: a to_world with scale x -1 mirrors the image", "[mitsuba]") 
   CHECK(self / total > 0.2);
 }
 
-TEST_CASE("mitsuba: film crop, sampler sample_count and integrator max_depth", "[mitsuba]") {
+TEST_CASE("mitsuba: film crop, sampler sample_count and integrator max_depth", "[mitsuba]" TIER_UNIT) {
   auto scene_with = [](const std::string& film, const std::string& integrator = "<integer name=\"max_depth\" value=\"3\"/>") {
     return xml_scene(R"(  <integrator type="path">)" + integrator + R"(</integrator>
   <sensor type="perspective">
@@ -757,7 +758,7 @@ TEST_CASE("mitsuba: film crop, sampler sample_count and integrator max_depth", "
 // ------------------------------------------------------------------------------------------
 // 6. Shapes
 
-TEST_CASE("mitsuba: analytic shapes have their areas", "[mitsuba]") {
+TEST_CASE("mitsuba: analytic shapes have their areas", "[mitsuba]" TIER_UNIT) {
   auto area_of = [](const std::string& shape) {
     LoadedScene loaded = parse_scene(loadable(shape), "scene.xml", ".");
     return total_area(*loaded.scene);
@@ -794,7 +795,7 @@ TEST_CASE("mitsuba: analytic shapes have their areas", "[mitsuba]") {
              Contains("the cylinder has no extent"));
 }
 
-TEST_CASE("mitsuba: reference cycles, self-including files and exponential sharing are refused", "[mitsuba]") {
+TEST_CASE("mitsuba: reference cycles, self-including files and exponential sharing are refused", "[mitsuba]" TIER_UNIT) {
   const std::string cycle = xml_scene(
       "<bsdf type=\"twosided\" id=\"a\">\n  <bsdf type=\"twosided\" id=\"b\">\n    <ref id=\"a\"/>\n  </bsdf>\n</bsdf>");
   CHECK(error_of([&] { translate(cycle); }) == "scene.xml:4:6: <ref id=\"a\">: this reference closes a cycle (an object inside itself)");
@@ -817,7 +818,7 @@ TEST_CASE("mitsuba: reference cycles, self-including files and exponential shari
   CHECK_THAT(error_of([&] { translate(xml_scene(body)); }), Contains("expands to more than 100000"));
 }
 
-TEST_CASE("mitsuba: 0.6 uoffset and uscale give uv * scale + offset", "[mitsuba]") {
+TEST_CASE("mitsuba: 0.6 uoffset and uscale give uv * scale + offset", "[mitsuba]" TIER_UNIT) {
   const json doc = translate(xml_scene(R"(<bsdf type="diffuse" id="m"><texture type="checkerboard" name="reflectance">
     <float name="uscale" value="2"/><float name="uoffset" value="0.5"/><float name="vscale" value="3"/>
   </texture></bsdf>)", "0.6.0"));
@@ -825,7 +826,7 @@ TEST_CASE("mitsuba: 0.6 uoffset and uscale give uv * scale + offset", "[mitsuba]
   CHECK(to_uv == json::array({json::array({2.0, 0.0, 0.5}), json::array({0.0, 3.0, 0.0})}));
 }
 
-TEST_CASE("mitsuba: a mirroring to_world keeps a rectangle's normal, and mesh files get smooth normals", "[mitsuba]") {
+TEST_CASE("mitsuba: a mirroring to_world keeps a rectangle's normal, and mesh files get smooth normals", "[mitsuba]" TIER_UNIT) {
   const json doc = translate(xml_scene(R"(
     <shape type="rectangle"><transform name="to_world"><scale x="-1"/></transform></shape>
     <shape type="rectangle"><transform name="to_world"><scale z="-1"/></transform></shape>
@@ -844,7 +845,7 @@ TEST_CASE("mitsuba: a mirroring to_world keeps a rectangle's normal, and mesh fi
   CHECK_FALSE(files["objects"][1].contains("smooth_normals"));
 }
 
-TEST_CASE("mitsuba: 0.6 sppm, ppm and photonmapper become sppm, progressive photon and photon", "[mitsuba]") {
+TEST_CASE("mitsuba: 0.6 sppm, ppm and photonmapper become sppm, progressive photon and photon", "[mitsuba]" TIER_UNIT) {
   const std::string sensor = R"(
   <sensor type="perspective"><float name="fov" value="40"/>
     <sampler type="independent"><integer name="sampleCount" value="8"/></sampler>
@@ -877,7 +878,7 @@ TEST_CASE("mitsuba: 0.6 sppm, ppm and photonmapper become sppm, progressive phot
   }
 }
 
-TEST_CASE("mitsuba: <default> values that double each other stop at 1 MiB, and long values are not echoed whole", "[mitsuba]") {
+TEST_CASE("mitsuba: <default> values that double each other stop at 1 MiB, and long values are not echoed whole", "[mitsuba]" TIER_UNIT) {
   // Issue 23: 29 doublings of a 2 KB file took 5.9 GB and 60 s before this bound.
   std::string defaults = R"(  <default name="a0" value="xy"/>)";
   for (int i = 1; i <= 29; ++i) {
@@ -902,7 +903,7 @@ TEST_CASE("mitsuba: <default> values that double each other stop at 1 MiB, and l
   CHECK_THAT(echo, StartsWith("scene.xml:2:4: <shape type=\"nnnn") && Contains(" characters left out ...] "));
 }
 
-TEST_CASE("mitsuba: an area emitter declared with an id and referred to from shapes", "[mitsuba]") {
+TEST_CASE("mitsuba: an area emitter declared with an id and referred to from shapes", "[mitsuba]" TIER_UNIT) {
   // Issue 24: <emitter type="area" id="e"/> at the top level was an error.
   const std::string xml = xml_scene(R"(  <emitter type="area" id="lamp"><rgb name="radiance" value="4, 3, 2"/></emitter>
   <shape type="sphere"><ref id="lamp"/></shape>
@@ -920,7 +921,7 @@ TEST_CASE("mitsuba: an area emitter declared with an id and referred to from sha
              Contains("an area emitter belongs inside a <shape> (or, with an id, is referred to from one)"));
 }
 
-TEST_CASE("mitsuba: with ignore_unsupported, unsupported media (the sensor's too) and subsurface are skipped", "[mitsuba]") {
+TEST_CASE("mitsuba: with ignore_unsupported, unsupported media (the sensor's too) and subsurface are skipped", "[mitsuba]" TIER_UNIT) {
   // Issue 24: a medium inside the sensor, and <subsurface> inside a shape, were errors even then.
   // (Homogeneous and heterogeneous media are read since issue 26: a plugin we do not know stands in.)
   const std::string xml = xml_scene(R"(  <sensor type="perspective"><medium type="rgbfog"/></sensor>
@@ -940,7 +941,7 @@ TEST_CASE("mitsuba: with ignore_unsupported, unsupported media (the sensor's too
   CHECK_THAT(t.warnings[2], Contains("unsupported medium plugin") && Contains("vacuum in its place"));
 }
 
-TEST_CASE("mitsuba: files named in an included file: its folder, the scene's, then <path> folders", "[mitsuba]") {
+TEST_CASE("mitsuba: files named in an included file: its folder, the scene's, then <path> folders", "[mitsuba]" TIER_UNIT) {
   // Issue 24, item 4: Mitsuba's resolver order, and <path> in an included file relative to it.
   test::TempDir dir;
   namespace fs = std::filesystem;
@@ -962,7 +963,7 @@ TEST_CASE("mitsuba: files named in an included file: its folder, the scene's, th
   CHECK(fs::equivalent(d["objects"][2]["file"].get<std::string>(), dir.path() / "sub" / "tex" / "far.obj"));
 }
 
-TEST_CASE("mitsuba: rough BSDFs default to Beckmann as in Mitsuba; a given distribution is kept", "[mitsuba]") {
+TEST_CASE("mitsuba: rough BSDFs default to Beckmann as in Mitsuba; a given distribution is kept", "[mitsuba]" TIER_UNIT) {
   // Issue 24, item 10: JSON scenes default to GGX; Mitsuba's scenes meant Beckmann.
   for (const char* type : {"roughconductor", "roughdielectric", "roughplastic"}) {
     INFO(type);
@@ -974,7 +975,7 @@ TEST_CASE("mitsuba: rough BSDFs default to Beckmann as in Mitsuba; a given distr
   CHECK_FALSE(translate(xml_scene("  <bsdf type=\"conductor\" id=\"c\"/>"))["materials"]["c"].contains("distribution"));
 }
 
-TEST_CASE("mitsuba: sampling_weight of emitters and area emitters (samplingWeight in 0.6)", "[mitsuba]") {
+TEST_CASE("mitsuba: sampling_weight of emitters and area emitters (samplingWeight in 0.6)", "[mitsuba]" TIER_UNIT) {
   const json d = translate(xml_scene(R"(  <emitter type="point"><float name="sampling_weight" value="3"/></emitter>
   <emitter type="area" id="e"><float name="sampling_weight" value="0.5"/></emitter>
   <shape type="sphere"><ref id="e"/></shape>)"));
@@ -984,7 +985,7 @@ TEST_CASE("mitsuba: sampling_weight of emitters and area emitters (samplingWeigh
   CHECK(old["lights"][0]["sampling_weight"] == 2.0);
 }
 
-TEST_CASE("mitsuba: dielectrics take specular_reflectance and specular_transmittance, as colours or textures", "[mitsuba]") {
+TEST_CASE("mitsuba: dielectrics take specular_reflectance and specular_transmittance, as colours or textures", "[mitsuba]" TIER_UNIT) {
   // Issue 24: they were unknown keys of our dielectrics.
   const std::string xml = loadable(R"(  <bsdf type="dielectric" id="tinted"><rgb name="specular_transmittance" value="0.2, 0.8, 0.4"/></bsdf>
   <bsdf type="roughdielectric" id="frosted"><texture type="checkerboard" name="specular_reflectance"/></bsdf>
@@ -1006,7 +1007,7 @@ TEST_CASE("mitsuba: dielectrics take specular_reflectance and specular_transmitt
   CHECK_THAT(error_of([&] { parse_scene(bad, "scene.xml", "."); }), Contains("specular_transmittance"));
 }
 
-TEST_CASE("mitsuba: an area emitter's radiance as a texture", "[mitsuba]") {
+TEST_CASE("mitsuba: an area emitter's radiance as a texture", "[mitsuba]" TIER_UNIT) {
   // Issue 24: a textured area emitter was an error.
   const std::string xml = loadable(R"(  <shape type="rectangle">
     <emitter type="area"><texture type="checkerboard" name="radiance">
@@ -1028,7 +1029,7 @@ TEST_CASE("mitsuba: an area emitter's radiance as a texture", "[mitsuba]") {
              Contains("an area emitter takes one radiance"));
 }
 
-TEST_CASE("mitsuba: blendbsdf takes two nested BSDFs and a weight, a number or a texture", "[mitsuba]") {
+TEST_CASE("mitsuba: blendbsdf takes two nested BSDFs and a weight, a number or a texture", "[mitsuba]" TIER_UNIT) {
   const std::string xml = loadable(R"(  <bsdf type="blendbsdf" id="b"><float name="weight" value="0.25"/>
     <bsdf type="diffuse"/><bsdf type="conductor"/></bsdf>
   <bsdf type="blendbsdf" id="t"><texture type="checkerboard" name="weight"/>
@@ -1055,7 +1056,7 @@ TEST_CASE("mitsuba: blendbsdf takes two nested BSDFs and a weight, a number or a
   CHECK_THAT(error_of([&] { parse_scene(heavy, "scene.xml", "."); }), Contains("weight must be one number in [0, 1]"));
 }
 
-TEST_CASE("mitsuba: normalmap nests one BSDF; a normal map that is not three channels is refused", "[mitsuba]") {
+TEST_CASE("mitsuba: normalmap nests one BSDF; a normal map that is not three channels is refused", "[mitsuba]" TIER_UNIT) {
   test::TempDir dir;
   Image normals(2, 2);
   for (Color& c : normals.pixels) c = Color(0.5f, 0.5f, 1.0f);
@@ -1079,7 +1080,7 @@ TEST_CASE("mitsuba: normalmap nests one BSDF; a normal map that is not three cha
              Contains("a normal map needs three channels"));
 }
 
-TEST_CASE("mitsuba: bumpmap takes its height from its unnamed texture; a flat height leaves the image unchanged", "[mitsuba]") {
+TEST_CASE("mitsuba: bumpmap takes its height from its unnamed texture; a flat height leaves the image unchanged", "[mitsuba]" TIER_UNIT) {
   test::TempDir dir;
   Image flat(4, 4);
   for (Color& c : flat.pixels) c = Color(0.3f);
@@ -1129,7 +1130,7 @@ TEST_CASE("mitsuba: bumpmap takes its height from its unnamed texture; a flat he
              Contains("a bump map's height texture must be a bitmap"));
 }
 
-TEST_CASE("mitsuba: principled and principledthin with numbers and textures", "[mitsuba]") {
+TEST_CASE("mitsuba: principled and principledthin with numbers and textures", "[mitsuba]" TIER_UNIT) {
   const json doc = translate(xml_scene(R"(  <bsdf type="principled" id="p">
     <texture type="checkerboard" name="base_color"><rgb name="color0" value="0.1, 0.2, 0.3"/></texture>
     <texture type="checkerboard" name="roughness"/>
@@ -1153,7 +1154,7 @@ TEST_CASE("mitsuba: principled and principledthin with numbers and textures", "[
   CHECK_THAT(error_of([&] { parse_scene(bad, "scene.xml", "."); }), Contains("scene.xml:"));
 }
 
-TEST_CASE("mitsuba: 0.6's ward, coating and roughcoating with their camelCase names", "[mitsuba]") {
+TEST_CASE("mitsuba: 0.6's ward, coating and roughcoating with their camelCase names", "[mitsuba]" TIER_UNIT) {
   const json doc = translate(xml_scene(R"(  <bsdf type="coating" id="c"><float name="intIOR" value="1.7"/>
     <rgb name="sigmaA" value="0.1, 0.2, 0.3"/><float name="thickness" value="2"/><bsdf type="diffuse"/></bsdf>
   <bsdf type="roughcoating" id="r"><float name="alpha" value="0.3"/><bsdf type="diffuse"/></bsdf>
@@ -1172,7 +1173,7 @@ TEST_CASE("mitsuba: 0.6's ward, coating and roughcoating with their camelCase na
              Contains("takes one nested BSDF"));
 }
 
-TEST_CASE("mitsuba: a spot's texture and a projector", "[mitsuba]") {
+TEST_CASE("mitsuba: a spot's texture and a projector", "[mitsuba]" TIER_UNIT) {
   const json doc = translate(xml_scene(R"(  <emitter type="spot"><transform name="to_world"><lookat origin="0, 5, 0" target="0, 0, 0" up="0, 0, 1"/></transform>
     <texture type="checkerboard" name="texture"/></emitter>
   <emitter type="projector"><transform name="to_world"><lookat origin="1, 2, 3" target="0, 0, 0" up="0, 1, 0"/></transform>
@@ -1194,7 +1195,7 @@ TEST_CASE("mitsuba: a spot's texture and a projector", "[mitsuba]") {
              Contains("<texture"));
 }
 
-TEST_CASE("mitsuba: a <path> in an included file that is not next to it is resolved from the scene's folder", "[mitsuba]") {
+TEST_CASE("mitsuba: a <path> in an included file that is not next to it is resolved from the scene's folder", "[mitsuba]" TIER_UNIT) {
   // Mitsuba's own documentation scenes: docs/scenes/include/emitter_scene.xml says
   // <path value="../../common"/>, which exists from docs/scenes (the scene's folder), not from
   // docs/scenes/include. Mitsuba 3 tries the file's folder, then its file resolver.
@@ -1216,7 +1217,7 @@ TEST_CASE("mitsuba: a <path> in an included file that is not next to it is resol
              Contains("the folder does not exist: tried") && Contains("include/../../nowhere") && Contains("scenes/../../nowhere"));
 }
 
-TEST_CASE("mitsuba: plugin names in any case (\"Rectangle\" from exported scenes); a bump map's texture by any name", "[mitsuba]") {
+TEST_CASE("mitsuba: plugin names in any case (\"Rectangle\" from exported scenes); a bump map's texture by any name", "[mitsuba]" TIER_UNIT) {
   const json d = translate(xml_scene(R"(  <shape type="Sphere"/>
   <bsdf type="BumpMap" id="b"><texture type="checkerboard" name="tiles_bump"/><bsdf type="Diffuse"/></bsdf>)"));
   CHECK(d["objects"][0]["type"] == "sphere");
@@ -1225,7 +1226,7 @@ TEST_CASE("mitsuba: plugin names in any case (\"Rectangle\" from exported scenes
   CHECK(d["materials"]["b"]["bsdf"]["type"] == "diffuse");
 }
 
-TEST_CASE("mitsuba: a sampler declared at the top level with an id and referred to from the sensor", "[mitsuba]") {
+TEST_CASE("mitsuba: a sampler declared at the top level with an id and referred to from the sensor", "[mitsuba]" TIER_UNIT) {
   // Mitsuba's documentation scenes declare <sampler type="..." id="my_sampler"> beside the sensor.
   const json d = translate(xml_scene(R"(  <sampler type="multijitter" id="s"><integer name="sample_count" value="16"/></sampler>
   <sensor type="perspective"><ref id="s"/></sensor>)"));
@@ -1234,7 +1235,7 @@ TEST_CASE("mitsuba: a sampler declared at the top level with an id and referred 
 
 TEST_CASE("mitsuba: homogeneous media, their phase functions and constant volumes become our media; shapes' "
           "interior and exterior and the sensor's medium refer to them",
-          "[mitsuba][media]") {
+          "[mitsuba][media]" TIER_UNIT) {
   const std::string body = R"(
   <medium type="homogeneous" id="fog">
     <rgb name="sigma_t" value="0.5, 1, 2"/>
@@ -1289,7 +1290,7 @@ TEST_CASE("mitsuba: homogeneous media, their phase functions and constant volume
 
 TEST_CASE("mitsuba: heterogeneous media read grid and constant volumes placed as Mitsuba 3 places them: the unit "
           "cube under to_world (or the file's box), values at cell centres; the medium is empty outside that box",
-          "[mitsuba][media]") {
+          "[mitsuba][media]" TIER_UNIT) {
   test::TempDir dir;
   // A 2 x 1 x 1 grid: 1 in its low-x voxel, 3 in its high-x one.
   VolumeGrid g = test::make_grid(2, 1, 1, Vec3(-5.0f), Vec3(5.0f), [](int x, int, int) { return 1.0f + 2.0f * float(x); });

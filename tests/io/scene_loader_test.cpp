@@ -1,6 +1,7 @@
 // Scene loading: a valid scene's contents, and every class of error named by file, line and
 // column (syntax) or JSON pointer (meaning). Also loads every scene shipped in scenes/.
 #include <catch2/catch.hpp>
+#include "support/tiers.h"
 #include <filesystem>
 #include <limits>
 #include "core/lights/area.h"
@@ -38,7 +39,7 @@ LoadedScene parse(const std::string& text, const std::string& base_dir = ".") {
 }
 }  // namespace
 
-TEST_CASE("scene loader: a minimal valid scene", "[core][scene_loader]") {
+TEST_CASE("scene loader: a minimal valid scene", "[core][scene_loader]" TIER_UNIT) {
   const std::string objects = "[" + kSphere + ",\n" + kLightQuad + R"(,
     {"type": "triangle", "vertices": [[0, 0, 0], [1, 0, 0], [0, 1, 0]], "material": "glass"},
     {"type": "mesh", "vertices": [[0, 0, 1], [1, 0, 1], [1, 1, 1], [0, 1, 1]], "indices": [[0, 1, 2], [0, 2, 3]], "material": "white"}
@@ -72,7 +73,7 @@ TEST_CASE("scene loader: a minimal valid scene", "[core][scene_loader]") {
   CHECK(hit.t == Approx(4.0f).epsilon(1e-4));
 }
 
-TEST_CASE("scene loader: point lights and a scene without lights", "[core][scene_loader]") {
+TEST_CASE("scene loader: point lights and a scene without lights", "[core][scene_loader]" TIER_UNIT) {
   std::string text = scene_text("[" + kSphere + "]");
   LoadedScene dark = parse(text);
   CHECK(dark.scene->lights.empty());
@@ -86,7 +87,7 @@ TEST_CASE("scene loader: point lights and a scene without lights", "[core][scene
   CHECK(lit.scene->lights[0]->power().r == Approx(4 * kPi * 2));
 }
 
-TEST_CASE("scene loader: a syntax error names file, line and column", "[core][scene_loader]") {
+TEST_CASE("scene loader: a syntax error names file, line and column", "[core][scene_loader]" TIER_UNIT) {
   // Line 3 lacks a comma between two numbers; the parser stops at the second one, column 22.
   const std::string text =
       "{\n"
@@ -106,14 +107,14 @@ TEST_CASE("scene loader: a syntax error names file, line and column", "[core][sc
   REQUIRE_THROWS_WITH(parse("{\n  \"camera\": {\n"), StartsWith("test.json:3:1: "));
 }
 
-TEST_CASE("scene loader: unknown material lists the known ones", "[core][scene_loader]") {
+TEST_CASE("scene loader: unknown material lists the known ones", "[core][scene_loader]" TIER_UNIT) {
   const std::string text = scene_text(R"([{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "glas"}])");
   REQUIRE_THROWS_AS(parse(text), InputError);
   REQUIRE_THROWS_WITH(parse(text), StartsWith("test.json: /objects/0/material: unknown material \"glas\" (known: "));
   REQUIRE_THROWS_WITH(parse(text), Contains("(known: glass, light, white)"));
 }
 
-TEST_CASE("scene loader: semantic errors name the JSON pointer", "[core][scene_loader]") {
+TEST_CASE("scene loader: semantic errors name the JSON pointer", "[core][scene_loader]" TIER_UNIT) {
   SECTION("misspelt key") {
     const std::string text = scene_text(R"([{"type": "sphere", "center": [0, 0, 0], "radious": 1, "material": "white"}])");
     REQUIRE_THROWS_AS(parse(text), InputError);
@@ -175,7 +176,7 @@ TEST_CASE("scene loader: semantic errors name the JSON pointer", "[core][scene_l
   }
 }
 
-TEST_CASE("scene loader: numbers too large for a double are rejected", "[core][scene_loader]") {
+TEST_CASE("scene loader: numbers too large for a double are rejected", "[core][scene_loader]" TIER_UNIT) {
   // nlohmann::json refuses 1e999 while parsing (it would be inf), so this is located by line and column.
   const std::string text = scene_text(R"([{"type": "sphere", "center": [0, 0, 0], "radius": 1e999, "material": "white"}])");
   REQUIRE_THROWS_AS(parse(text), InputError);
@@ -191,7 +192,7 @@ TEST_CASE("scene loader: numbers too large for a double are rejected", "[core][s
                       Contains("/camera/position/1: ") && Contains("not finite"));
 }
 
-TEST_CASE("scene loader: a degenerate triangle is a warning, not an error", "[core][scene_loader]") {
+TEST_CASE("scene loader: a degenerate triangle is a warning, not an error", "[core][scene_loader]" TIER_UNIT) {
   const std::string objects = "[" + kSphere + R"(,
     {"type": "triangle", "vertices": [[0, 0, 0], [1, 1, 1], [2, 2, 2]], "material": "white"}])";
   LoadedScene loaded;
@@ -208,7 +209,7 @@ TEST_CASE("scene loader: a degenerate triangle is a warning, not an error", "[co
   REQUIRE_THROWS_WITH(parse(scene_text(emissive)), Contains("/objects/1: emissive object has zero area"));
 }
 
-TEST_CASE("scene loader: mesh files are resolved from the scene folder", "[core][scene_loader]") {
+TEST_CASE("scene loader: mesh files are resolved from the scene folder", "[core][scene_loader]" TIER_UNIT) {
   test::TempDir dir;
   const std::string missing = scene_text(R"([{"type": "mesh", "file": "models/nothing.obj", "material": "white"}])");
   REQUIRE_THROWS_AS(parse(missing, dir.path().string()), InputError);
@@ -226,7 +227,7 @@ TEST_CASE("scene loader: mesh files are resolved from the scene folder", "[core]
   CHECK(b.hi == Vec3(2, 2, 1));
 }
 
-TEST_CASE("load_scene: missing files and folders are input errors", "[core][scene_loader]") {
+TEST_CASE("load_scene: missing files and folders are input errors", "[core][scene_loader]" TIER_UNIT) {
   test::TempDir dir;
   REQUIRE_THROWS_AS(load_scene(dir.file("nope.json")), InputError);
   REQUIRE_THROWS_WITH(load_scene(dir.file("nope.json")), Contains("nope.json") && Contains("not found"));
@@ -237,7 +238,7 @@ TEST_CASE("load_scene: missing files and folders are input errors", "[core][scen
   REQUIRE_THROWS_WITH(load_scene(bad), StartsWith(bad + ":3:1: "));
 }
 
-TEST_CASE("load_scene: every scene in scenes/ and tests/data loads with a light", "[core][scene_loader]") {
+TEST_CASE("load_scene: every scene in scenes/ and tests/data loads with a light", "[core][scene_loader]" TIER_UNIT) {
   std::vector<std::string> files;
   for (const char* folder : {"/scenes", "/tests/data"}) {
     for (const auto& entry : std::filesystem::directory_iterator(std::string(CAUSTICA_SOURCE_DIR) + folder)) {
@@ -258,19 +259,19 @@ TEST_CASE("load_scene: every scene in scenes/ and tests/data loads with a light"
 // Regressions: the column of a syntax error was that of the last character of the
 // unexpected token; and "1e999" was located by a plain text search, so an earlier string
 // "1e999" took the blame.
-TEST_CASE("scene loader: a syntax error at a multi-character token names its first column", "[core][regression]") {
+TEST_CASE("scene loader: a syntax error at a multi-character token names its first column", "[core][regression]" TIER_UNIT) {
   const std::string text = "{\n  \"camera\": {},\n  \"render\": {\"width\": 8 \"height\": 8}\n}";
   // "height" starts at column 25 of line 3; the parser reports its closing quote, column 32.
   REQUIRE_THROWS_WITH(parse(text), StartsWith("test.json:3:25: "));
 }
 
-TEST_CASE("scene loader: number overflow is located at the number", "[core][regression]") {
+TEST_CASE("scene loader: number overflow is located at the number", "[core][regression]" TIER_UNIT) {
   const std::string text = "{\n  \"name\": \"1e999\",\n  \"radius\": 1e999\n}";
   REQUIRE_THROWS_WITH(parse(text), StartsWith("test.json:3:13: "));
 }
 
 TEST_CASE("scene loader: an emissive material's objects emit through their area light, front side only",
-          "[io][scene_loader]") {
+          "[io][scene_loader]" TIER_UNIT) {
   // A quad in z = 0 facing -z (edge1 x edge2), lit from the camera's side.
   LoadedScene loaded = parse_scene(
       scene_text(R"([{"type": "quad", "origin": [-1, -1, 0], "edge1": [0, 1, 0], "edge2": [1, 0, 0], "material": "light"}])"),
@@ -292,7 +293,7 @@ TEST_CASE("scene loader: an emissive material's objects emit through their area 
   CHECK(is_black(plain.scene->emitted(hit, Vec3(0, 0, 1))));
 }
 
-TEST_CASE("scene loader: command-line overrides apply before the scene is built", "[io][scene_loader]") {
+TEST_CASE("scene loader: command-line overrides apply before the scene is built", "[io][scene_loader]" TIER_UNIT) {
   const std::string text = scene_text(R"([{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "white"}])",
                                        kMaterials,
                                        R"({"width": 40, "height": 30, "spp": 2, "crop": [10, 5, 20, 10], "accel": "embree"})");
@@ -322,7 +323,7 @@ TEST_CASE("scene loader: command-line overrides apply before the scene is built"
   CHECK(std::string(s.accel().name()) == "bvh");
 }
 
-TEST_CASE("scene loader: a seed takes every value from 0 to 2^64 - 1, none clamped", "[io][scene_loader]") {
+TEST_CASE("scene loader: a seed takes every value from 0 to 2^64 - 1, none clamped", "[io][scene_loader]" TIER_UNIT) {
   const std::string objects = R"([{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "white"}])";
   for (const char* seed : {"0", "9223372036854775807", "9223372036854775808", "18446744073709551615"}) {
     INFO(seed);
@@ -334,7 +335,7 @@ TEST_CASE("scene loader: a seed takes every value from 0 to 2^64 - 1, none clamp
                     Contains("/render/spp: value 9223372036854775808 is out of range"));
 }
 
-TEST_CASE("scene loader: sampling_weight scales how often a light is chosen", "[io][scene_loader]") {
+TEST_CASE("scene loader: sampling_weight scales how often a light is chosen", "[io][scene_loader]" TIER_UNIT) {
   // Issue 24 (Mitsuba's sampling_weight): chosen in proportion to power times weight.
   const std::string objects = "[" + kSphere + ",\n" +
                               R"({"type": "quad", "origin": [0, 2, 0], "edge1": [1, 0, 0], "edge2": [0, 0, 1], "material": "light", "sampling_weight": 2}])";

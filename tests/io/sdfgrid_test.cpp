@@ -1,12 +1,14 @@
 // The `sdfgrid` shape from JSON and Mitsuba XML: a sphere written as a grid renders as the
 // analytic sphere does; placement under to_world and instances; bad grids are errors.
 #include <catch2/catch.hpp>
+#include "support/tiers.h"
 #include <cmath>
 #include "io/mitsuba/translate.h"
 #include "io/scene_loader.h"
 #include "io/volume_io.h"
 #include "support/grids.h"
 #include "support/errors.h"
+#include "support/reference.h"
 #include "support/render_util.h"
 #include "support/run.h"
 #include "support/scenes.h"
@@ -37,7 +39,7 @@ std::string scene_with(const std::string& shape) {
 }
 }  // namespace
 
-TEST_CASE("sdfgrid: a sphere written as a 40^3 grid renders within 1 % of the analytic sphere", "[sdfgrid][io]") {
+TEST_CASE("sdfgrid: a sphere written as a 40^3 grid renders within 1 % of the analytic sphere", "[sdfgrid][io]" TIER_FIGURE) {
   test::TempDir dir;
   dir.write("sphere.vol", format_vol(unit_sphere_sdf(40)));
   const std::string analytic = scene_with(R"({"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "white"})");
@@ -60,7 +62,7 @@ TEST_CASE("sdfgrid: a sphere written as a 40^3 grid renders within 1 % of the an
   CHECK(region_mean(p1.image, 0, 0, 48, 48).x == Approx(mb.x).epsilon(0.03));
 }
 
-TEST_CASE("sdfgrid: Mitsuba's sdfgrid in an instanced shapegroup is placed by both transforms", "[sdfgrid][io][mitsuba]") {
+TEST_CASE("sdfgrid: Mitsuba's sdfgrid in an instanced shapegroup is placed by both transforms", "[sdfgrid][io][mitsuba]" TIER_UNIT) {
   test::TempDir dir;
   dir.write("ball.vol", format_vol(unit_sphere_sdf(16)));
   const std::string xml = dir.write("scene.xml", R"(<scene version="3.0.0">
@@ -86,7 +88,7 @@ TEST_CASE("sdfgrid: Mitsuba's sdfgrid in an instanced shapegroup is placed by bo
   CHECK_FALSE(scene.intersect(Ray{Vec3(0.0f, 0.0f, 5.0f), Vec3(0, 0, -1), kInfinity}, hit));
 }
 
-TEST_CASE("sdfgrid: bad grids and settings are errors naming the file and the place", "[sdfgrid][io]") {
+TEST_CASE("sdfgrid: bad grids and settings are errors naming the file and the place", "[sdfgrid][io]" TIER_UNIT) {
   test::TempDir dir;
   auto load_with = [&](const std::string& file, const std::string& extra = "", const char* material = "white") {
     const std::string shape = R"({"type": "sdfgrid", "file": ")" + file + R"(", "material": ")" + material + "\"" + extra + "}";
@@ -121,7 +123,7 @@ TEST_CASE("sdfgrid: bad grids and settings are errors naming the file and the pl
 }
 
 TEST_CASE("curves.xml: photon agrees with path within 3 % (mean) and 8 % per 4x4 region, for any thread count",
-          "[sdfgrid][curve][io][mitsuba]") {
+          "[sdfgrid][curve][io][mitsuba]" TIER_FIGURE) {
   // scenes/mitsuba/curves.xml: a wire helix (linearcurve) and its shadow, blades of grass
   // (bsplinecurve), a glass torus (an SDF grid) focusing a small light onto the floor, and a
   // diffuse one through an instance.
@@ -129,13 +131,7 @@ TEST_CASE("curves.xml: photon agrees with path within 3 % (mean) and 8 % per 4x4
   // the regions of the two path renders differ by up to 7 % (the caustic's), so 8 % here.
   const std::string scene = test::read_scene_file("scenes/mitsuba/curves.xml");
   const std::string dir = std::string(CAUSTICA_SOURCE_DIR) + "/scenes/mitsuba";
-  if (test::kSanitized) {  // every shape and integrator traced, the figures left to the Release suite
-    CHECK(render_text(scene, "path", "{}", 16, 24, 24, 3, 0, dir).image.mean().x > 0.0f);
-    CHECK(render_text(scene, "photon", "{}", 2, 24, 24, 4, 1, dir).image.pixels ==
-          render_text(scene, "photon", "{}", 2, 24, 24, 4, 2, dir).image.pixels);
-    return;
-  }
-  const auto path = render_text(scene, "path", "{}", 4096, 48, 48, 3, 0, dir);
+  const test::Reference path = test::stored_path_reference("mitsuba-curves-48", scene, 8192, 48, 48, 3, dir);
   const auto p1 = render_text(scene, "photon", "{}", 32, 48, 48, 4, 1, dir);
   const auto p2 = render_text(scene, "photon", "{}", 32, 48, 48, 4, 2, dir);
   CHECK(p1.image.pixels == p2.image.pixels);

@@ -1,6 +1,7 @@
 // Grid files (Mitsuba's .vol, OpenVDB's .vdb): read back as written; every malformed file an error naming the
 // file and what is wrong; random corruptions never crash the reader.
 #include <catch2/catch.hpp>
+#include "support/tiers.h"
 #include <cmath>
 #include <cstring>
 #include <fstream>
@@ -32,7 +33,7 @@ void put_int(std::string& b, size_t offset, int32_t v) { std::memcpy(&b[offset],
 void put_float(std::string& b, size_t offset, float v) { std::memcpy(&b[offset], &v, 4); }
 }  // namespace
 
-TEST_CASE("vol files: a grid reads back as written, one or three channels", "[io][media]") {
+TEST_CASE("vol files: a grid reads back as written, one or three channels", "[io][media]" TIER_UNIT) {
   for (int channels : {1, 3}) {
     const VolumeGrid g = small_grid(channels);
     const VolumeGrid r = parse_vol(format_vol(g), "smoke.vol");
@@ -46,7 +47,7 @@ TEST_CASE("vol files: a grid reads back as written, one or three channels", "[io
   }
 }
 
-TEST_CASE("vol files: malformed ones are errors naming the file and the fault", "[io][media]") {
+TEST_CASE("vol files: malformed ones are errors naming the file and the fault", "[io][media]" TIER_UNIT) {
   const std::string good = format_vol(small_grid(1));
   CHECK(parse_error(good).empty());
   CHECK_THAT(parse_error("PLY\x03"), Catch::Contains("smoke.vol") && Catch::Contains("\"VOL\""));
@@ -85,7 +86,7 @@ TEST_CASE("vol files: malformed ones are errors naming the file and the fault", 
   CHECK_THAT(test::error_of([] { read_vol_file("/nonexistent/smoke.vol"); }), Catch::Contains("/nonexistent/smoke.vol"));
 }
 
-TEST_CASE("vol files: corrupted and truncated files never crash the reader (fuzz)", "[io][media][fuzz]") {
+TEST_CASE("vol files: corrupted and truncated files never crash the reader (fuzz)", "[io][media][fuzz]" TIER_UNIT) {
   const std::string good = format_vol(small_grid(3));
   Rng rng(17);
   int errors = 0;
@@ -119,7 +120,7 @@ std::string read_bytes(const std::string& path) {
 
 TEST_CASE("vdb files: an OpenVDB grid reads back as the same volume in world space; a .vol and a .vdb are told "
           "apart by their bytes; wrong grids and files are errors naming the file",
-          "[io][media]") {
+          "[io][media]" TIER_UNIT) {
   if (!vdb_supported()) {
     WARN("built without OpenVDB: .vdb files are errors");
     CHECK_THAT(test::error_of([] { read_vdb_file("smoke.vdb", ""); }), Catch::Contains("smoke.vdb") && Catch::Contains("OpenVDB"));
@@ -171,7 +172,7 @@ TEST_CASE("vdb files: an OpenVDB grid reads back as the same volume in world spa
   }
 }
 
-TEST_CASE("vdb files: corrupted and truncated files never crash or hang the reader (fuzz)", "[io][media][fuzz]") {
+TEST_CASE("vdb files: corrupted and truncated files never crash or hang the reader (fuzz)", "[io][media][fuzz]" TIER_UNIT) {
   if (!vdb_supported()) return;
   test::TempDir dir;
   write_vdb_file(dir.file("good.vdb"), dense_grid(), "density");

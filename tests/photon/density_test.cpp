@@ -1,5 +1,6 @@
 // Density estimation: the progressive radius schedule and the photons' bounce window.
 #include <catch2/catch.hpp>
+#include "support/tiers.h"
 #include <cmath>
 #include "core/rng.h"
 #include "io/scene_loader.h"
@@ -7,7 +8,7 @@
 
 using namespace caustica;
 
-TEST_CASE("progressive radius: the first passes match prod (j + alpha) / (j + 1) by hand", "[photon][progressive]") {
+TEST_CASE("progressive radius: the first passes match prod (j + alpha) / (j + 1) by hand", "[photon][progressive]" TIER_UNIT) {
   for (double a : {2.0 / 3.0, 0.5, 0.9}) {
     INFO("alpha " << a);
     CHECK(progressive_radius2_scale(0, a) == 1.0);
@@ -20,7 +21,7 @@ TEST_CASE("progressive radius: the first passes match prod (j + alpha) / (j + 1)
 }
 
 TEST_CASE("progressive radius: closed form Gamma(n + 1 + a) / (Gamma(1 + a) Gamma(n + 2)), ratio to 2^(a - 1)",
-          "[photon][progressive]") {
+          "[photon][progressive]" TIER_UNIT) {
   for (double a : {2.0 / 3.0, 0.5, 0.9}) {
     INFO("alpha " << a);
     // prod_{j=1..n} (j + a) / (j + 1) = [Gamma(n + 1 + a) / Gamma(1 + a)] / [Gamma(n + 2) / Gamma(2)].
@@ -60,7 +61,7 @@ std::vector<Photon> window_photons() {
 }  // namespace
 
 TEST_CASE("density: the bounce window keeps exactly the photons of min..max bounces (fixed radius)",
-          "[photon][density]") {
+          "[photon][density]" TIER_UNIT) {
   PhotonMap map;
   map.build(window_photons(), 1.0f);
   EstimateSettings base;
@@ -99,7 +100,7 @@ TEST_CASE("density: the bounce window keeps exactly the photons of min..max boun
 }
 
 TEST_CASE("density: radiance estimate with a bounce window is f_r times the kept flux over pi r^2",
-          "[photon][density]") {
+          "[photon][density]" TIER_UNIT) {
   // A diffuse quad in z = 0 seen from +z: f_r = albedo / pi.
   LoadedScene s = parse_scene(R"({"camera": {"position": [0, 0, 3], "look_at": [0, 0, 0]},
     "materials": {"m": {"type": "diffuse", "albedo": [0.5, 0.25, 0.75]}},
@@ -132,7 +133,7 @@ TEST_CASE("density: radiance estimate with a bounce window is f_r times the kept
 }
 
 TEST_CASE("density: k-NN estimate with a bounce window keeps the disc of the k nearest of any bounce count",
-          "[photon][density]") {
+          "[photon][density]" TIER_UNIT) {
   // On the x axis at 0.1, 0.2, ..., 0.6 with bounces 0, 1, 2, 0, 1, 2; flux 1 each.
   std::vector<Photon> v;
   for (int i = 0; i < 6; ++i) v.push_back(at(0.1f * float(i + 1), 0.0f, 1.0f, i % 3));
@@ -184,7 +185,7 @@ double mean_uniform_estimate(const EstimateSettings& s, size_t n, int maps) {
 }
 }  // namespace
 
-TEST_CASE("density: a fixed-radius estimate of a uniform photon density is unbiased", "[photon][density]") {
+TEST_CASE("density: a fixed-radius estimate of a uniform photon density is unbiased", "[photon][density]" TIER_UNIT) {
   EstimateSettings s;
   s.fixed_radius = true;
   s.max_radius = 0.06f;  // about 11 photons on average
@@ -197,7 +198,7 @@ TEST_CASE("density: a fixed-radius estimate of a uniform photon density is unbia
 // density its expectation is k / (k - 1) times the density (pi r_k^2 is Gamma(k) distributed),
 // 11 % high at k = 10, 2 % at the photon integrator's global_k 50. The estimate now counts the
 // k - 1 photons inside the disc, which is unbiased.
-TEST_CASE("density: a k-NN estimate of a uniform photon density is unbiased", "[photon][density]") {
+TEST_CASE("density: a k-NN estimate of a uniform photon density is unbiased", "[photon][density]" TIER_UNIT) {
   EstimateSettings s;
   s.k = 10;
   s.max_radius = 1.0f;
@@ -248,7 +249,7 @@ std::pair<double, double> mean_cached(const EstimateSettings& s, size_t photons,
 // lookup biases it). (Sites that were every 4th photon, estimated from all photons, read 1.046
 // at k = 50 and radius2_scale 0.1, 1.27 at k = 10 and 0.2.)
 TEST_CASE("density: the precomputed irradiance reads a uniform density without bias at any disc size",
-          "[photon][density][progressive]") {
+          "[photon][density][progressive]" TIER_UNIT) {
   std::vector<Vec3> points;
   for (int qy = -2; qy <= 2; ++qy)
     for (int qx = -2; qx <= 2; ++qx) points.emplace_back(0.3f * qx + 0.01f, 0.3f * qy, 0.0f);
@@ -276,7 +277,7 @@ TEST_CASE("density: the precomputed irradiance reads a uniform density without b
 // more: 0.97 to 1.02 of it). Without the gradient it read 1.15 of it at x = -0.85, and
 // Mitsuba's principled scene's contact shadows were 4 % too bright.
 TEST_CASE("density: the precomputed irradiance reads a steep density gradient as the full estimate does",
-          "[photon][density]") {
+          "[photon][density]" TIER_UNIT) {
   constexpr size_t kPhotons = 4000;
   constexpr int kMaps = 100;
   EstimateSettings s;

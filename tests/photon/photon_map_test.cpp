@@ -1,5 +1,6 @@
 // The kd-tree against a brute-force scan, and the photon record's encodings.
 #include <catch2/catch.hpp>
+#include "support/tiers.h"
 #include <algorithm>
 #include "core/rng.h"
 #include "core/sampling.h"
@@ -22,7 +23,7 @@ std::vector<Photon> random_photons(size_t n, uint64_t seed) {
 }
 }  // namespace
 
-TEST_CASE("photon map: knn and radius queries match a brute-force scan", "[photon][kdtree]") {
+TEST_CASE("photon map: knn and radius queries match a brute-force scan", "[photon][kdtree]" TIER_UNIT) {
   const auto photons = random_photons(20000, 11);
   PhotonMap map;
   map.build(photons, 1.0f);
@@ -61,7 +62,7 @@ TEST_CASE("photon map: knn and radius queries match a brute-force scan", "[photo
   }
 }
 
-TEST_CASE("photon map: empty map answers nothing", "[photon][kdtree]") {
+TEST_CASE("photon map: empty map answers nothing", "[photon][kdtree]" TIER_UNIT) {
   PhotonMap map;
   map.build({}, 1.0f);
   std::vector<Neighbour> found;
@@ -69,7 +70,7 @@ TEST_CASE("photon map: empty map answers nothing", "[photon][kdtree]") {
   CHECK(map.radius_query(Vec3(0), 1.0f, found) == 0);
 }
 
-TEST_CASE("photon record: 24 bytes, directions within 1.5 degrees, flux to half precision", "[photon]") {
+TEST_CASE("photon record: 24 bytes, directions within 1.5 degrees, flux to half precision", "[photon]" TIER_UNIT) {
   STATIC_REQUIRE(sizeof(Photon) == 24);
   Rng rng(3);
   float worst = 1;
@@ -87,7 +88,7 @@ TEST_CASE("photon record: 24 bytes, directions within 1.5 degrees, flux to half 
   CHECK(p.bounces == 2);
 }
 
-TEST_CASE("photon map: memory stays near 32 bytes a photon", "[photon][kdtree]") {
+TEST_CASE("photon map: memory stays near 32 bytes a photon", "[photon][kdtree]" TIER_UNIT) {
   PhotonMap map;
   map.build(random_photons(200000, 2), 1.0f);
   const double per_photon = double(map.memory_bytes()) / double(map.size());
@@ -96,7 +97,7 @@ TEST_CASE("photon map: memory stays near 32 bytes a photon", "[photon][kdtree]")
   CHECK(per_photon <= 32.0);  // the target of the photon-mapping issue
 }
 
-TEST_CASE("photon map: a large map (two kd-trees) still matches a brute-force scan", "[photon][kdtree]") {
+TEST_CASE("photon map: a large map (two kd-trees) still matches a brute-force scan", "[photon][kdtree]" TIER_UNIT) {
   const auto photons = random_photons(PhotonMap::kSplitThreshold + 1000, 23);
   PhotonMap map;
   map.build(photons, 1.0f);

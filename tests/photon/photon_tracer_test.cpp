@@ -1,5 +1,6 @@
 // The photon pass: flux bookkeeping against analytic answers, map contents, determinism.
 #include <catch2/catch.hpp>
+#include "support/tiers.h"
 #include <cstring>
 #include <tbb/global_control.h>
 #include "io/scene_loader.h"
@@ -46,7 +47,7 @@ Color first_bounce_flux(const std::vector<Photon>& photons, float scale, size_t*
 }
 }  // namespace
 
-TEST_CASE("photon pass: first-bounce flux equals the light's power in a closed box", "[photon][flux]") {
+TEST_CASE("photon pass: first-bounce flux equals the light's power in a closed box", "[photon][flux]" TIER_UNIT) {
   LoadedScene s = parse_scene(kClosedBox, "box.json", ".");
   PhotonPassSettings settings;
   settings.global_photons = 50000;
@@ -64,7 +65,7 @@ TEST_CASE("photon pass: first-bounce flux equals the light's power in a closed b
   CHECK(double(r.global.size()) / double(r.global_emitted) == Approx(2.0).epsilon(0.03));
 }
 
-TEST_CASE("photon pass: first-bounce flux is power times the fraction hitting a diffuse surface", "[photon][flux]") {
+TEST_CASE("photon pass: first-bounce flux is power times the fraction hitting a diffuse surface", "[photon][flux]" TIER_UNIT) {
   LoadedScene s = parse_scene(kFloor, "floor.json", ".");
   PhotonPassSettings settings;
   settings.global_photons = 60000;
@@ -82,7 +83,7 @@ TEST_CASE("photon pass: first-bounce flux is power times the fraction hitting a 
   CHECK(r.global.size() >= settings.global_photons);
 }
 
-TEST_CASE("photon pass: a scene that stores nothing ends with a warning", "[photon]") {
+TEST_CASE("photon pass: a scene that stores nothing ends with a warning", "[photon]" TIER_UNIT) {
   // The light faces away from the only surface: every photon escapes.
   const char* text = R"({
     "camera": {"position": [0, 5, 5], "look_at": [0, 0, 0]},
@@ -101,7 +102,7 @@ TEST_CASE("photon pass: a scene that stores nothing ends with a warning", "[phot
   CHECK_THAT(r.warnings[0], Catch::Contains("global photon map: only 0 of 10"));
 }
 
-TEST_CASE("photon pass: caustic map holds only L S+ D photons aimed at the glass", "[photon][caustic]") {
+TEST_CASE("photon pass: caustic map holds only L S+ D photons aimed at the glass", "[photon][caustic]" TIER_UNIT) {
   const char* text = R"({
     "camera": {"position": [0, 5, 5], "look_at": [0, 0, 0]},
     "materials": {"white": {"type": "diffuse", "albedo": 0.8}, "glass": {"type": "glass", "ior": 1.5}},
@@ -132,7 +133,7 @@ TEST_CASE("photon pass: caustic map holds only L S+ D photons aimed at the glass
   CHECK(total < 1.0 * 10 * cone);
 }
 
-TEST_CASE("photon pass: the same maps for 1 and 2 threads", "[photon][determinism]") {
+TEST_CASE("photon pass: the same maps for 1 and 2 threads", "[photon][determinism]" TIER_UNIT) {
   LoadedScene s = parse_scene(kClosedBox, "box.json", ".");
   PhotonPassSettings settings;
   settings.global_photons = 30000;
@@ -150,7 +151,7 @@ TEST_CASE("photon pass: the same maps for 1 and 2 threads", "[photon][determinis
   CHECK(std::memcmp(one.global.data(), two.global.data(), one.global.size() * sizeof(Photon)) == 0);
 }
 
-TEST_CASE("photon pass: caustic photons pass through plastic's coat and land on the floor", "[photon][caustic]") {
+TEST_CASE("photon pass: caustic photons pass through plastic's coat and land on the floor", "[photon][caustic]" TIER_UNIT) {
   // A smooth plastic ball (a diffuse base under a clear coat) over a floor, a point light above.
   // Light -> coat -> floor is L S D: those photons belong in the caustic map, carrying the
   // coat's Fresnel reflectance; the photons' first hits on the ball itself are not caustics.
@@ -184,7 +185,7 @@ TEST_CASE("photon pass: caustic photons pass through plastic's coat and land on 
 
 TEST_CASE("photon pass: in a small medium the emission goes on for volume photons alone, the global map unchanged "
           "and the volume photons' total flux the same as without it",
-          "[photon][media]") {
+          "[photon][media]" TIER_UNIT) {
   // A fog ball of radius 0.25 in the closed box: a few per cent of the photons scatter in it.
   std::string text = kClosedBox;
   text.replace(text.find(R"("objects": [)"), std::strlen(R"("objects": [)"),

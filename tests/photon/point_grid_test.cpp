@@ -1,6 +1,7 @@
 // The irradiance points' grid against a brute-force scan: every answer it gives is an accepted
 // point within twice the true nearest distance, and it answers most queries on the surfaces.
 #include <catch2/catch.hpp>
+#include "support/tiers.h"
 #include <cmath>
 #include "core/rng.h"
 #include "photon/point_grid.h"
@@ -56,7 +57,7 @@ float brute_nearest2(const Points& pts, const Vec3& q, const Vec3& side, float m
 }
 }  // namespace
 
-TEST_CASE("point grid: answers agree with a brute-force scan", "[photon][grid]") {
+TEST_CASE("point grid: answers agree with a brute-force scan", "[photon][grid]" TIER_UNIT) {
   const Points pts = room(2000, 3);
   PointGrid grid;
   grid.build(pts.p, pts.n);
@@ -119,7 +120,7 @@ TEST_CASE("point grid: answers agree with a brute-force scan", "[photon][grid]")
   CHECK(with_rejected > 0);  // the edges were reached
 }
 
-TEST_CASE("point grid: empty, single and coincident points, queries far away", "[photon][grid]") {
+TEST_CASE("point grid: empty, single and coincident points, queries far away", "[photon][grid]" TIER_UNIT) {
   PointGrid empty;
   empty.build({}, {});
   CHECK(empty.nearest(Vec3(0.0f), 1.0f, [](const Vec3&) { return true; }) == PointGrid::kNone);
@@ -145,7 +146,7 @@ TEST_CASE("point grid: empty, single and coincident points, queries far away", "
   CHECK(grid.nearest(Vec3(std::nanf(""), 0.0f, 0.0f), 10.0f, any) == PointGrid::kUndecided);
 }
 
-TEST_CASE("point grid: an accepted point behind 8 rejected ones is left to the caller", "[photon][grid]") {
+TEST_CASE("point grid: an accepted point behind 8 rejected ones is left to the caller", "[photon][grid]" TIER_UNIT) {
   // A sheet of points facing +z, and at q a cluster facing -z (rejected by the query's side).
   Rng rng(2);
   std::vector<Vec3> p, n;
@@ -177,7 +178,7 @@ TEST_CASE("point grid: an accepted point behind 8 rejected ones is left to the c
   }
 }
 
-TEST_CASE("point grid: points that are not finite are left out", "[photon][grid]") {
+TEST_CASE("point grid: points that are not finite are left out", "[photon][grid]" TIER_UNIT) {
   std::vector<Vec3> p{Vec3(0.0f), Vec3(1.0f, 0.0f, 0.0f), Vec3(std::nanf(""), 0.0f, 0.0f), Vec3(kInfinity)};
   std::vector<Vec3> n(4, Vec3(0, 0, 1));
   PointGrid grid;

@@ -1,6 +1,7 @@
 // The volume photons' boundary correction: the fraction of a ball in a photon's medium against
 // the analytic fraction a plane leaves of it.
 #include <catch2/catch.hpp>
+#include "support/tiers.h"
 #include "core/scene.h"
 #include "io/scene_loader.h"
 #include "photon/volume_boundary.h"
@@ -25,7 +26,7 @@ double mean_fraction(const Scene& scene, const Vec3& p, int32_t medium, float r)
 }  // namespace
 
 TEST_CASE("volume boundary: the ball's fraction beside a wall, across a null boundary and in a medium's bounds",
-          "[photon][volume][media]") {
+          "[photon][volume][media]" TIER_UNIT) {
   // Fog everywhere; an opaque floor at y = 0 and, above it, a surface that only bounds media
   // (null BSDF): the floor cuts the ball, the boundary does not.
   LoadedScene open = parse_scene(R"({"camera": {"position": [0, 5, -10], "look_at": [0, 0, 0], "medium": "fog"},

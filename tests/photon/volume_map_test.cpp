@@ -1,6 +1,7 @@
 // The volume photon map's search along rays against a brute-force scan, and its first radius
 // on a lattice of known spacing.
 #include <catch2/catch.hpp>
+#include "support/tiers.h"
 #include <algorithm>
 #include <map>
 #include "core/sampler.h"
@@ -9,7 +10,7 @@
 using namespace caustica;
 
 TEST_CASE("volume map: the photons along a ray are those a brute-force scan finds, with their t and distance",
-          "[photon][volume]") {
+          "[photon][volume]" TIER_UNIT) {
   Rng rng(17);
   std::vector<Photon> photons;
   for (int i = 0; i < 5000; ++i) {
@@ -54,7 +55,7 @@ TEST_CASE("volume map: the photons along a ray are those a brute-force scan find
   }
 }
 
-TEST_CASE("volume map: the first radius on a lattice is its spacing", "[photon][volume]") {
+TEST_CASE("volume map: the first radius on a lattice is its spacing", "[photon][volume]" TIER_UNIT) {
   // Spacing 0.1: a photon's 6 nearest others lie at 0.1, the next 12 at 0.1 sqrt(2).
   std::vector<Photon> photons;
   for (int x = 0; x < 20; ++x)

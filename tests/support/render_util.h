@@ -4,6 +4,7 @@
 #include <tbb/global_control.h>
 #include "io/scene_loader.h"
 #include "support/temp_dir.h"
+#include "support/tiers.h"
 #include "trace/render.h"
 
 namespace caustica::test {
@@ -14,6 +15,7 @@ struct TestRender {
 };
 
 // settings_json: the integrator's settings (without "type"); spp and size override the scene's.
+// In a figure-tier test of a reduced build, spp and the photon counts are cut (support/tiers.h).
 inline TestRender render_text(const std::string& scene_text, const std::string& integrator,
                               const std::string& settings_json, int spp, int width, int height, uint64_t seed = 1,
                               int threads = 0, const std::string& base_dir = ".") {
@@ -25,12 +27,12 @@ inline TestRender render_text(const std::string& scene_text, const std::string& 
   JsonSource settings;
   settings.file = "test.json";
   settings.pointer = "/integrator";
-  settings.value = nlohmann::json::parse(settings_json);
+  settings.value = nlohmann::json::parse(figure_settings(settings_json));
   auto make = [&] {
     auto integ = create_integrator(integrator, settings, scene.render);
     integ->preprocess(scene, {seed, true});
     RenderOptions options;
-    options.job.passes = spp;
+    options.job.passes = figure_spp(spp);
     options.job.seed = seed;
     options.quiet = true;
     TestRender r;

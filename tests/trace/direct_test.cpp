@@ -1,5 +1,6 @@
 // Next-event estimation: stratified light samples.
 #include <catch2/catch.hpp>
+#include "support/tiers.h"
 #include <set>
 #include <vector>
 #include "io/scene_loader.h"
@@ -8,7 +9,7 @@
 
 using namespace caustica;
 
-TEST_CASE("direct: stratified light samples choose each of n equal lights exactly once", "[trace][direct]") {
+TEST_CASE("direct: stratified light samples choose each of n equal lights exactly once", "[trace][direct]" TIER_UNIT) {
   // Four point lights of equal power around a floor point: with 4 stratified samples each light
   // is chosen once, so the estimate is the exact sum every time (independent samples vary).
   const std::string scene_text = test::floor_scene(R"({"type": "point", "position": [1, 1, 0], "intensity": [1, 1, 1]},
@@ -48,7 +49,7 @@ TEST_CASE("direct: stratified light samples choose each of n equal lights exactl
   CHECK(mean_independent == Approx(exact).epsilon(0.05));
 }
 
-TEST_CASE("direct: stratified samples of an area light average to the independent samples' mean", "[trace][direct]") {
+TEST_CASE("direct: stratified samples of an area light average to the independent samples' mean", "[trace][direct]" TIER_UNIT) {
   // A 2 x 2 emitter 1 unit above a floor point: the stratified estimate is unbiased and its
   // spread is smaller than independent samples'.
   const std::string scene_text = test::floor_under_square_light(1, 0.5);
@@ -83,7 +84,7 @@ TEST_CASE("direct: stratified samples of an area light average to the independen
 
 TEST_CASE("direct: single scattering from an area light in fog matches its double integral, for a ray passing the "
           "light and one ending on it",
-          "[trace][direct][media]") {
+          "[trace][direct][media]" TIER_UNIT) {
   // Fog everywhere (around the camera, bounded by nothing), a 1 x 1 light at height 1 facing down.
   LoadedScene loaded = parse_scene(R"({"camera": {"position": [0, -3, 0], "look_at": [0, 0, 0], "up": [0, 0, 1], "medium": "fog"},
     "media": {"fog": {"type": "homogeneous", "sigma_t": 0.5, "albedo": 0.8}},

@@ -1,5 +1,6 @@
 // Integrators against analytic answers: the furnace, and the factory's errors.
 #include <catch2/catch.hpp>
+#include "support/tiers.h"
 #include <tbb/global_control.h>
 #include "io/scene_loader.h"
 #include "support/scenes.h"
@@ -25,7 +26,7 @@ Color render_mean(const std::string& text, uint64_t seed = 0) {
 }
 }  // namespace
 
-TEST_CASE("path: furnace reads Le / (1 - albedo)", "[trace][furnace]") {
+TEST_CASE("path: furnace reads Le / (1 - albedo)", "[trace][furnace]" TIER_UNIT) {
   for (double albedo : {0.5, 0.8}) {
     const Color mean = render_mean(test::furnace_scene(albedo, 1.0, R"({"type": "path"})", albedo > 0.6 ? 64 : 16));
     const double expected = 1.0 / (1.0 - albedo);
@@ -34,19 +35,19 @@ TEST_CASE("path: furnace reads Le / (1 - albedo)", "[trace][furnace]") {
   }
 }
 
-TEST_CASE("whitted: furnace reads Le (1 + albedo): emission plus one diffuse bounce of direct light", "[trace][furnace]") {
+TEST_CASE("whitted: furnace reads Le (1 + albedo): emission plus one diffuse bounce of direct light", "[trace][furnace]" TIER_UNIT) {
   const Color mean = render_mean(test::furnace_scene(0.5, 1.0, R"({"type": "whitted"})", 16));
   for (int c = 0; c < 3; ++c) CHECK(mean[c] == Approx(1.5).epsilon(0.01));
 }
 
-TEST_CASE("path: max_depth 1 sees emission only", "[trace]") {
+TEST_CASE("path: max_depth 1 sees emission only", "[trace]" TIER_UNIT) {
   std::string text = test::furnace_scene(0.5, 1.0, R"({"type": "path"})", 2, 8);
   text.replace(text.find("\"max_depth\": 1000"), 17, "\"max_depth\": 1");
   const Color mean = render_mean(text);
   for (int c = 0; c < 3; ++c) CHECK(mean[c] == Approx(1.5).epsilon(0.02));  // Le + direct at the first hit
 }
 
-TEST_CASE("integrator factory: unknown names and keys are errors", "[trace]") {
+TEST_CASE("integrator factory: unknown names and keys are errors", "[trace]" TIER_UNIT) {
   RenderSettings rs;
   JsonSource src;
   src.file = "s.json";
@@ -61,7 +62,7 @@ TEST_CASE("integrator factory: unknown names and keys are errors", "[trace]") {
   REQUIRE_THROWS_WITH(create_integrator("path", src, rs), Catch::Contains("/integrator/rr_depth"));
 }
 
-TEST_CASE("max_depth 0: every integrator renders only the emitters the camera sees", "[trace]") {
+TEST_CASE("max_depth 0: every integrator renders only the emitters the camera sees", "[trace]" TIER_UNIT) {
   // Mitsuba's max_depth 1: the camera ray's emission and nothing else.
   std::string scene = test::read_scene_file("scenes/cornell-box.json");
   scene.replace(scene.find("\"render\": {"), std::string("\"render\": {").size(), "\"render\": {\"max_depth\": 0, ");

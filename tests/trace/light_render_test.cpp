@@ -2,6 +2,7 @@
 // environment around a sphere, in the path tracer and photon mapping; photon flux of a
 // directional light.
 #include <catch2/catch.hpp>
+#include "support/tiers.h"
 #include "support/scenes.h"
 #include "io/scene_loader.h"
 #include "photon/photon_tracer.h"
@@ -13,7 +14,7 @@ using namespace caustica;
 using test::floor_scene;
 using test::render_text;
 
-TEST_CASE("spot light: a floor on the axis reads rho / pi * I / h^2", "[trace][light]") {
+TEST_CASE("spot light: a floor on the axis reads rho / pi * I / h^2", "[trace][light]" TIER_UNIT) {
   // Spot 2 units above the floor pointing down; the camera sees the floor around the axis.
   const std::string scene = floor_scene(
       R"({"type": "spot", "position": [0, 2, 0], "target": [0, 0, 0], "intensity": [8, 4, 2], "cutoff_angle": 20})");
@@ -23,7 +24,7 @@ TEST_CASE("spot light: a floor on the axis reads rho / pi * I / h^2", "[trace][l
   for (int c = 0; c < 3; ++c) CHECK(mean[c] == Approx(0.5 / 3.14159265358979 * (8 >> c) / 4.0).epsilon(0.01));
 }
 
-TEST_CASE("directional light: a floor reads rho / pi * E cos(theta), in path and photon", "[trace][light]") {
+TEST_CASE("directional light: a floor reads rho / pi * E cos(theta), in path and photon", "[trace][light]" TIER_UNIT) {
   // Light travelling down at 60 degrees from the normal: E cos(theta) = E / 2.
   const std::string scene = floor_scene(
       R"({"type": "directional", "direction": [0.8660254, -0.5, 0], "irradiance": [6, 3, 1.5]})");
@@ -36,7 +37,7 @@ TEST_CASE("directional light: a floor reads rho / pi * E cos(theta), in path and
   }
 }
 
-TEST_CASE("directional light: photons on a floor carry E times the floor's projected area", "[photon][light]") {
+TEST_CASE("directional light: photons on a floor carry E times the floor's projected area", "[photon][light]" TIER_UNIT) {
   const std::string scene = floor_scene(R"({"type": "directional", "direction": [0, -1, 0], "irradiance": [2, 2, 2]})");
   LoadedScene s = parse_scene(scene, "floor.json", ".");
   PhotonPassSettings settings;
@@ -52,7 +53,7 @@ TEST_CASE("directional light: photons on a floor carry E times the floor's proje
 }
 
 TEST_CASE("constant environment: a diffuse sphere reads rho L, the background L, in path and photon",
-          "[trace][light]") {
+          "[trace][light]" TIER_UNIT) {
   // A convex object under a uniform sky: every point sees the sky over its whole hemisphere.
   const std::string scene = R"({
     "camera": {"position": [0, 0, -4], "look_at": [0, 0, 0], "fov": 10},
@@ -86,7 +87,7 @@ TEST_CASE("constant environment: a diffuse sphere reads rho L, the background L,
   CHECK(r.image.mean().y == Approx(1.0f));
 }
 
-TEST_CASE("mask: a quarter-opaque blocker passes three quarters of the light, in path and photon", "[trace][mask]") {
+TEST_CASE("mask: a quarter-opaque blocker passes three quarters of the light, in path and photon", "[trace][mask]" TIER_FIGURE) {
   // A directional light straight down; a masked quad (opacity 0.25, black BSDF) hovers over the
   // part of the floor the camera sees. The floor reads rho / pi * E * 0.75.
   const std::string scene = R"({
@@ -123,7 +124,7 @@ std::string two_texels(const test::TempDir& dir, const Color& left, const Color&
 }
 }  // namespace
 
-TEST_CASE("projector: a floor reads scale E / h^2 where the image falls, the image as a camera there sees it", "[trace][light]") {
+TEST_CASE("projector: a floor reads scale E / h^2 where the image falls, the image as a camera there sees it", "[trace][light]" TIER_UNIT) {
   test::TempDir dir;
   const std::string image = two_texels(dir, Color(0.8f, 0.2f, 0.2f), Color(0.2f, 0.2f, 0.8f));
   // 2 above the floor, looking down, up +z: the image's left (u < 1/2) falls on world +x. A
@@ -144,7 +145,7 @@ TEST_CASE("projector: a floor reads scale E / h^2 where the image falls, the ima
   }
 }
 
-TEST_CASE("spot light: a texture on the cone, the right way round and of the right value", "[trace][light]") {
+TEST_CASE("spot light: a texture on the cone, the right way round and of the right value", "[trace][light]" TIER_UNIT) {
   test::TempDir dir;
   const std::string image = two_texels(dir, Color(1.0f, 0.0f, 0.0f), Color(0.0f, 0.0f, 1.0f));
   // Mitsuba's spot maps u = 1/2 + x / (2 z tan cutoff), x = cross(up, axis) = world +x here: the

@@ -1,6 +1,7 @@
 // Progressive photon mapping (photon with "progressive") and SPPM: the per-pixel statistics,
 // convergence towards the path tracer, determinism, and the render loop's pass control.
 #include <catch2/catch.hpp>
+#include "support/tiers.h"
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -11,6 +12,7 @@
 #include <thread>
 #include <tbb/global_control.h>
 #include "io/scene_loader.h"
+#include "support/reference.h"
 #include "support/render_util.h"
 #include "support/scenes.h"
 #include "trace/render.h"
@@ -51,13 +53,13 @@ Result run(const Job& job) {
   JsonSource settings;
   settings.file = "test.json";
   settings.pointer = "/integrator";
-  settings.value = nlohmann::json::parse(job.settings);
+  settings.value = nlohmann::json::parse(test::figure_settings(job.settings));
   std::optional<tbb::global_control> control;
   if (job.threads > 0) control.emplace(tbb::global_control::max_allowed_parallelism, size_t(job.threads));
   auto integrator = create_integrator(job.integrator, settings, scene.render);
   integrator->preprocess(scene, {job.seed, true, job.cancel});
   RenderOptions options;
-  options.job.passes = job.spp;
+  options.job.passes = test::figure_spp(job.spp);
   options.job.seed = job.seed;
   options.quiet = true;
   options.job.time_budget = job.time_limit;
@@ -70,6 +72,20 @@ Result run(const Job& job) {
 }
 
 glm::dvec3 image_mean(const Image& img) { return test::region_mean(img, 0, 0, img.width, img.height); }
+
+// The stored path reference (tests/support/reference.h) of a scene with its emitters hidden.
+test::Reference hidden_emitter_reference(const std::string& name, const std::string& scene_text, int spp, int size,
+                                         uint64_t seed = 3) {
+  test::ReferenceSpec spec;
+  spec.name = name;
+  spec.scene = scene_text;
+  spec.settings = R"({"hide_emitters": true})";
+  spec.spp = spp;
+  spec.width = spec.height = size;
+  spec.seed = seed;
+  spec.base_dir = std::string(CAUSTICA_SOURCE_DIR) + "/scenes";
+  return test::stored_reference(spec);
+}
 
 // The running means after each of the pass counts in `keep` (the render runs max(keep) passes).
 std::map<int, Image> snapshots(Job job, const std::vector<int>& keep) {
@@ -140,7 +156,7 @@ Job cornell_box_job(const std::string& integrator, const std::string& settings) 
 // ---- SppmPixel::add_pass -------------------------------------------------------------------
 
 TEST_CASE("sppm pixel: add_pass follows N' = N + alpha M, r' = r sqrt(N' / (N + M)), tau' = (tau + phi) N' / (N + M)",
-          "[trace][sppm][progressive]") {
+          "[trace][sppm][progressive]" TIER_UNIT) {
   const float alpha_f = 2.0f / 3.0f;
   const double alpha = alpha_f;  // the value add_pass receives
   SppmPixel px;
@@ -232,7 +248,7 @@ TEST_CASE("sppm pixel: add_pass follows N' = N + alpha M, r' = r sqrt(N' / (N + 
 // the photon integrator with one pair of maps (not progressive) keeps its bias: 0.96 to 1.07.
 // Tolerances: progressive photon < 0.6, sppm < 0.5, one pair of maps > 0.8.
 TEST_CASE("progressive photon and sppm: block error after 64 passes below 0.6 and 0.5 x that after 4 (Cornell box)",
-          "[trace][progressive][consistency]") {
+          "[trace][progressive][consistency]" TIER_FIGURE) {
   Job ref_job;
   ref_job.scene_text = test::read_scene_file("scenes/cornell-box.json");
   ref_job.integrator = "path";
@@ -266,7 +282,7 @@ TEST_CASE("progressive photon and sppm: block error after 64 passes below 0.6 an
 
 // ---- Determinism -----------------------------------------------------------------------------
 
-TEST_CASE("progressive photon and sppm: identical pixels for 1 and 2 threads", "[trace][progressive][determinism]") {
+TEST_CASE("progressive photon and sppm: identical pixels for 1 and 2 threads", "[trace][progressive][determinism]" TIER_UNIT) {
   for (const auto& [name, settings] : {std::pair<std::string, std::string>{"photon", kProgressivePhoton},
                                        std::pair<std::string, std::string>{"sppm", kSmallSppm}}) {
     Job job;
@@ -293,7 +309,7 @@ TEST_CASE("progressive photon and sppm: identical pixels for 1 and 2 threads", "
 
 // ---- Analytic and reference values ------------------------------------------------------------
 
-TEST_CASE("sppm: furnace reads Le / (1 - albedo) within 2 %", "[trace][sppm][furnace]") {
+TEST_CASE("sppm: furnace reads Le / (1 - albedo) within 2 %", "[trace][sppm][furnace]" TIER_UNIT) {
   Job job;
   job.scene_text = test::furnace_scene(0.5, 1.0, R"({"type": "sppm"})");
   job.integrator = "sppm";
@@ -311,10 +327,10 @@ TEST_CASE("sppm: furnace reads Le / (1 - albedo) within 2 %", "[trace][sppm][fur
 // anti-aliasing of its edge after 16 passes moves the mean by up to 3 % from seed to seed.
 // Measured (eight seeds): sppm 0.1 to 1.5 % below path with 100000 photons a pass (0.8 to 2 %
 // with 50000: the bias of the radii, which shrinks with the photons).
-TEST_CASE("sppm: image mean matches the path tracer on the Cornell box within 3 %", "[trace][sppm][reference]") {
+TEST_CASE("sppm: image mean matches the path tracer on the Cornell box within 3 %", "[trace][sppm][reference]" TIER_FIGURE) {
   Job job;
   job.scene_text = test::read_scene_file("scenes/cornell-box.json");
-  const glm::dvec3 path = mean_with(job, "path", R"({"hide_emitters": true})", 512, 3);
+  const glm::dvec3 path = image_mean(hidden_emitter_reference("cornell-box-32-hidden", job.scene_text, 2048, 32).image);
   const glm::dvec3 sppm = mean_with(job, "sppm", R"({"photons": 100000, "hide_emitters": true})", 16, 4);
   INFO("path " << path.x << " " << path.y << " " << path.z << "; sppm " << sppm.x << " " << sppm.y << " " << sppm.z);
   for (int c = 0; c < 3; ++c) CHECK(sppm[c] == Approx(path[c]).epsilon(0.03));
@@ -333,7 +349,10 @@ static void check_max_depth_agreement(int max_depth) {
   job.scene_text = test::read_scene_file("scenes/cornell-spheres.json");
   job.max_depth = max_depth;
   job.width = job.height = 24;
-  const glm::dvec3 path = mean_with(job, "path", R"({"hide_emitters": true})", 4096, 21);
+  nlohmann::json ref_scene = nlohmann::json::parse(job.scene_text);
+  ref_scene["render"]["max_depth"] = max_depth;
+  const glm::dvec3 path = image_mean(hidden_emitter_reference("cornell-spheres-24-hidden-depth" + std::to_string(max_depth),
+                                                              ref_scene.dump(), 8192, 24, 21).image);
   const glm::dvec3 photon = mean_with(job, "photon", R"({"progressive": false, "hide_emitters": true})", 64, 22);
   const glm::dvec3 sppm = mean_with(job, "sppm", R"({"photons": 100000, "hide_emitters": true})", 48, 23);
   INFO("max_depth " << max_depth << ": path " << path.x << " " << path.y << " " << path.z << "; photon " << photon.x
@@ -345,23 +364,23 @@ static void check_max_depth_agreement(int max_depth) {
 }
 
 TEST_CASE("max_depth 2: photon and sppm within 1.5 % of path (Cornell spheres)",
-          "[trace][progressive][max_depth]") {
+          "[trace][progressive][max_depth]" TIER_FIGURE) {
   check_max_depth_agreement(2);
 }
 
 TEST_CASE("max_depth 3: photon and sppm within 1.5 % of path (Cornell spheres)",
-          "[trace][progressive][max_depth]") {
+          "[trace][progressive][max_depth]" TIER_FIGURE) {
   check_max_depth_agreement(3);
 }
 
 TEST_CASE("max_depth 9: photon and sppm within 1.5 % of path (Cornell spheres)",
-          "[trace][progressive][max_depth]") {
+          "[trace][progressive][max_depth]" TIER_FIGURE) {
   check_max_depth_agreement(9);
 }
 
 // ---- Pass control: time budget and cancellation ------------------------------------------------
 
-TEST_CASE("progressive: a time budget stops between passes", "[trace][progressive][cancel]") {
+TEST_CASE("progressive: a time budget stops between passes", "[trace][progressive][cancel]" TIER_UNIT) {
   for (const auto& [name, settings] : kProgressiveIntegrators) {
     INFO(name);
     Job job = cornell_box_job(name, settings);
@@ -388,7 +407,7 @@ TEST_CASE("progressive: a time budget stops between passes", "[trace][progressiv
 }
 
 TEST_CASE("progressive: a cancel set in on_pass stops before the next pass, the image is that of fewer passes",
-          "[trace][progressive][cancel]") {
+          "[trace][progressive][cancel]" TIER_UNIT) {
   for (const auto& [name, settings] : kProgressiveIntegrators) {
     INFO(name);
     Job job = cornell_box_job(name, settings);
@@ -412,7 +431,7 @@ TEST_CASE("progressive: a cancel set in on_pass stops before the next pass, the 
 }
 
 TEST_CASE("progressive: a cancel from another thread stops the render, counting whole passes",
-          "[trace][progressive][cancel]") {
+          "[trace][progressive][cancel]" TIER_UNIT) {
   for (const auto& [name, settings] : kProgressiveIntegrators) {
     INFO(name);
     Job job = cornell_box_job(name, settings);

@@ -1,5 +1,6 @@
 // The render loop: determinism across thread counts, seeds, time budget, cancellation.
 #include <catch2/catch.hpp>
+#include "support/tiers.h"
 #include <tbb/global_control.h>
 #include "io/scene_loader.h"
 #include "trace/render.h"
@@ -33,7 +34,7 @@ Rendered render_tiny(const std::string& integrator_name, int threads, uint64_t s
 }
 }  // namespace
 
-TEST_CASE("render: same seed gives identical pixels with 1 and 2 threads", "[trace][determinism]") {
+TEST_CASE("render: same seed gives identical pixels with 1 and 2 threads", "[trace][determinism]" TIER_UNIT) {
   for (const char* name : {"path", "whitted"}) {
     const Rendered one = render_tiny(name, 1, 3);
     const Rendered two = render_tiny(name, 2, 3);
@@ -46,7 +47,7 @@ TEST_CASE("render: same seed gives identical pixels with 1 and 2 threads", "[tra
   }
 }
 
-TEST_CASE("render: another seed gives other noise but the same mean", "[trace]") {
+TEST_CASE("render: another seed gives other noise but the same mean", "[trace]" TIER_UNIT) {
   const Rendered a = render_tiny("path", 2, 1), b = render_tiny("path", 2, 2);
   size_t differing = 0;
   for (size_t i = 0; i < a.image.pixels.size(); ++i) differing += a.image.pixels[i] != b.image.pixels[i];
@@ -54,7 +55,7 @@ TEST_CASE("render: another seed gives other noise but the same mean", "[trace]")
   CHECK(a.image.mean().y == Approx(b.image.mean().y).epsilon(0.05));
 }
 
-TEST_CASE("render: a time budget renders whole passes", "[trace]") {
+TEST_CASE("render: a time budget renders whole passes", "[trace]" TIER_UNIT) {
   const Rendered r = render_tiny("path", 2, 0, 0.3);
   CHECK(r.stats.passes >= 1);
   CHECK(r.stats.samples == uint64_t(r.stats.passes) * 32 * 32);
@@ -62,7 +63,7 @@ TEST_CASE("render: a time budget renders whole passes", "[trace]") {
   CHECK(r.stats.seconds < 5.0);
 }
 
-TEST_CASE("render: cancellation stops before the first pass completes and keeps no partial pass", "[trace]") {
+TEST_CASE("render: cancellation stops before the first pass completes and keeps no partial pass", "[trace]" TIER_UNIT) {
   std::atomic<bool> cancel{true};
   const Rendered r = render_tiny("path", 2, 0, 0, &cancel);
   CHECK(r.stats.interrupted);

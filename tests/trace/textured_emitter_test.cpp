@@ -2,6 +2,7 @@
 // at the image's resolution with filter_type nearest comes back texel for texel; its light
 // reaches a floor as the texture's mean over the surface, in the path tracer and in photons.
 #include <catch2/catch.hpp>
+#include "support/tiers.h"
 #include "core/lights/area.h"
 #include "core/textures/bitmap.h"
 #include "io/image_io.h"
@@ -25,7 +26,7 @@ const char* kSquareObj = "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nvt 0 0\nvt 1 0
 }  // namespace
 
 TEST_CASE("textured area emitter: seen at the texture's resolution, nearest filtering returns every texel",
-          "[trace][light][texture]") {
+          "[trace][light][texture]" TIER_UNIT) {
   test::TempDir dir;
   const Image tex = texel_grid();
   write_image(dir.file("tex.exr"), tex);
@@ -51,7 +52,7 @@ TEST_CASE("textured area emitter: seen at the texture's resolution, nearest filt
 }
 
 TEST_CASE("bitmap: bilinear filtering is the interpolation between the four nearest texel centres",
-          "[core][texture]") {
+          "[core][texture]" TIER_UNIT) {
   test::TempDir dir;
   const Image tex = texel_grid();
   write_image(dir.file("tex.exr"), tex);
@@ -74,7 +75,7 @@ TEST_CASE("bitmap: bilinear filtering is the interpolation between the four near
 }
 
 TEST_CASE("textured area emitter: power is the texture's mean, the floor it lights agrees in path and photon",
-          "[trace][light][texture]") {
+          "[trace][light][texture]" TIER_UNIT) {
   test::TempDir dir;
   // Left half 4, right half 0: the light's power is that of a uniform radiance of 2.
   Image half(2, 1);

@@ -2,6 +2,7 @@
 // scattering medium, transmittance through an absorbing slab for camera and shadow rays, and
 // the readers' and integrators' refusals.
 #include <catch2/catch.hpp>
+#include "support/tiers.h"
 #include "io/scene_loader.h"
 #include "io/volume_io.h"
 #include "support/grids.h"
@@ -52,7 +53,7 @@ const char* kShadowSlab = R"({"camera": {"position": [0, 3, 0], "look_at": [0, 0
 }  // namespace
 
 TEST_CASE("path through media: a white furnace filled with a scattering medium reads the shell's radiance",
-          "[trace][media][furnace]") {
+          "[trace][media][furnace]" TIER_UNIT) {
   // Chromatic extinction and forward scattering; the medium filling the shell, and held by a
   // null sphere inside it.
   for (const bool inner : {false, true}) {
@@ -72,14 +73,14 @@ TEST_CASE("path through media: a white furnace filled with a scattering medium r
   }
 }
 
-TEST_CASE("path through media: camera rays through an absorbing slab read exp(-sigma_t d)", "[trace][media]") {
+TEST_CASE("path through media: camera rays through an absorbing slab read exp(-sigma_t d)", "[trace][media]" TIER_UNIT) {
   // (A medium that scatters nothing is passed with its transmittance: no noise.)
   const Color mean = render_text(kSlab, "path", "{}", 4, 8, 8).image.mean();
   const double sigma[3] = {0.2, 0.5, 1.0};
   for (int c = 0; c < 3; ++c) CHECK(mean[c] == Approx(std::exp(-2.0 * sigma[c])).epsilon(0.001));
 }
 
-TEST_CASE("media: shadow rays through an absorbing slab take its transmittance", "[trace][media]") {
+TEST_CASE("media: shadow rays through an absorbing slab take its transmittance", "[trace][media]" TIER_UNIT) {
   // L = albedo / pi * I / d^2 * exp(-sigma_a * 0.6), the light 4 above the floor's centre. (Every
   // integrator that takes direct light by shadow rays: photon-direct takes it from its map.)
   const double sigma[3] = {0.5, 1.0, 2.0};
@@ -90,7 +91,7 @@ TEST_CASE("media: shadow rays through an absorbing slab take its transmittance",
   }
 }
 
-TEST_CASE("media: bad media blocks and references are errors naming the place", "[io][media]") {
+TEST_CASE("media: bad media blocks and references are errors naming the place", "[io][media]" TIER_UNIT) {
   auto error = [](const std::string& medium, const std::string& object_keys = R"(, "interior": "fog")") {
     const std::string scene = R"({"camera": {"position": [0, 0, -5], "look_at": [0, 0, 0]}, "media": {"fog": )" + medium +
                               R"(}, "materials": {"m": {"type": "null"}},
@@ -113,7 +114,7 @@ TEST_CASE("media: bad media blocks and references are errors naming the place", 
   CHECK_THAT(error(R"({"type": "homogeneous", "sigma_t": 1, "density": 2})"), Catch::Contains("density"));
 }
 
-TEST_CASE("media: every integrator reads camera rays through an absorbing slab as exp(-sigma_t d)", "[trace][media]") {
+TEST_CASE("media: every integrator reads camera rays through an absorbing slab as exp(-sigma_t d)", "[trace][media]" TIER_PROCESS) {
   const double sigma[3] = {0.2, 0.5, 1.0};
   for (const IntegratorPlugin& plugin : integrator_plugins()) {
     INFO(plugin.name);
@@ -134,7 +135,7 @@ TEST_CASE("media: every integrator reads camera rays through an absorbing slab a
 
 TEST_CASE("path through media: a white furnace filled with a grid medium (delta and ratio tracking) reads the "
           "shell's radiance",
-          "[trace][media][furnace]") {
+          "[trace][media][furnace]" TIER_UNIT) {
   test::TempDir dir;
   Rng rng(9);
   const VolumeGrid g = test::make_grid(6, 5, 4, Vec3(-1.0f), Vec3(1.0f), [&](int, int, int) {
@@ -162,7 +163,7 @@ TEST_CASE("path through media: a white furnace filled with a grid medium (delta 
                  Catch::Contains("truncated"));
 }
 
-TEST_CASE("media: identical pixels for 1 and 2 threads (path, sppm, whitted, photon-direct)", "[trace][media][determinism]") {
+TEST_CASE("media: identical pixels for 1 and 2 threads (path, sppm, whitted, photon-direct)", "[trace][media][determinism]" TIER_UNIT) {
   const std::string scene =
       furnace_in_medium(R"({"type": "homogeneous", "sigma_t": [0.4, 1.0, 2.5], "albedo": 0.9, "phase": {"type": "hg", "g": 0.5}})", true);
   for (const char* integrator : {"path", "sppm", "whitted", "photon-direct"}) {
@@ -200,7 +201,7 @@ double slab_transmittance(double tau, double albedo, int walks, uint64_t seed) {
 }  // namespace
 
 TEST_CASE("path through media: a scattering slab transmits what a one-dimensional random walk gives",
-          "[trace][media][slab]") {
+          "[trace][media][slab]" TIER_UNIT) {
   // A slab 1 thick (sigma_t 1) between null boundaries at y = 1 and 2, under a directional light
   // of irradiance 1 straight down; the camera between the slab and a floor of albedo 0.001 (its
   // light sent back up and returned is 1e-3 of the total): L = 0.001 / pi * T.
