@@ -342,6 +342,7 @@ Prepared prepare_photon(const std::string& scene_text, const std::string& settin
                         int passes = 0, double time_budget = 0) {
   Prepared p{parse_scene(scene_text, "test.json", "."), nullptr};
   Scene& scene = *p.loaded.scene;
+  if (test::figure_reduced()) size = std::min(size, 8);  // (the pilot's figures are the Release suite's)
   scene.render.width = scene.render.height = size;
   scene.camera.set_resolution(size, size);
   JsonSource settings;
