@@ -49,7 +49,6 @@ Reference render_reference(const ReferenceSpec& spec) {
     }
   }
   Reference ref;
-  ref.spp = spec.spp;
   ref.image = Image(spec.width, spec.height);
   ref.standard_error = Image(spec.width, spec.height);
   const double k = kReferenceBatches;
@@ -63,8 +62,7 @@ Reference render_reference(const ReferenceSpec& spec) {
   return ref;
 }
 
-}  // namespace
-
+// The key of a reference's inputs (FNV-1a over them, hex).
 std::string reference_key(const ReferenceSpec& spec) {
   uint64_t h = 14695981039346656037ull;
   for (const std::string& s : {spec.scene, spec.integrator, spec.settings, std::to_string(spec.spp),
@@ -75,6 +73,8 @@ std::string reference_key(const ReferenceSpec& spec) {
   std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
   return buf;
 }
+
+}  // namespace
 
 Reference stored_reference(const ReferenceSpec& spec) {
   const std::filesystem::path dir = refs_dir();
@@ -120,7 +120,6 @@ Reference stored_reference(const ReferenceSpec& spec) {
                           << "; render it with scripts/make-test-refs.sh and say in the commit why the truth changed");
   REQUIRE(problem.empty());
   Reference ref;
-  ref.spp = spec.spp;
   ref.image = read_image(exr);
   ref.standard_error = read_image(se);
   REQUIRE(ref.image.width == spec.width);
@@ -130,10 +129,11 @@ Reference stored_reference(const ReferenceSpec& spec) {
 }
 
 Reference stored_path_reference(const std::string& name, const std::string& scene, int spp, int width, int height,
-                                uint64_t seed, const std::string& base_dir) {
+                                uint64_t seed, const std::string& base_dir, const std::string& settings) {
   ReferenceSpec spec;
   spec.name = name;
   spec.scene = scene;
+  spec.settings = settings;
   spec.spp = spp;
   spec.width = width;
   spec.height = height;

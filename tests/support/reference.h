@@ -29,7 +29,6 @@ struct ReferenceSpec {
 struct Reference {
   Image image;  // the mean
   Image standard_error;  // per pixel and channel, of the mean
-  int spp = 0;
 };
 
 // The stored reference for `spec`; fails the test (REQUIRE) when it is missing or stale. With the
@@ -38,15 +37,13 @@ struct Reference {
 // seed * 1000 + batch, and written.
 Reference stored_reference(const ReferenceSpec& spec);
 constexpr int kReferenceBatches = 8;
-// The same for `path` with no settings.
+// The same for `path` with `settings` (none by default).
 Reference stored_path_reference(const std::string& name, const std::string& scene, int spp, int width, int height,
-                                uint64_t seed = 3, const std::string& base_dir = ".");
+                                uint64_t seed = 3, const std::string& base_dir = ".",
+                                const std::string& settings = "{}");
 
 // The standard error of the mean of a rectangle of pixels (the channels' average), the pixels'
 // errors taken as independent.
 double region_standard_error(const Reference& ref, int x0, int y0, int x1, int y1);
-
-// The key of a reference's inputs (FNV-1a over them, hex).
-std::string reference_key(const ReferenceSpec& spec);
 
 }  // namespace caustica::test

@@ -76,15 +76,8 @@ glm::dvec3 image_mean(const Image& img) { return test::region_mean(img, 0, 0, im
 // The stored path reference (tests/support/reference.h) of a scene with its emitters hidden.
 test::Reference hidden_emitter_reference(const std::string& name, const std::string& scene_text, int spp, int size,
                                          uint64_t seed = 3) {
-  test::ReferenceSpec spec;
-  spec.name = name;
-  spec.scene = scene_text;
-  spec.settings = R"({"hide_emitters": true})";
-  spec.spp = spp;
-  spec.width = spec.height = size;
-  spec.seed = seed;
-  spec.base_dir = std::string(CAUSTICA_SOURCE_DIR) + "/scenes";
-  return test::stored_reference(spec);
+  return test::stored_path_reference(name, scene_text, spp, size, size, seed,
+                                     std::string(CAUSTICA_SOURCE_DIR) + "/scenes", R"({"hide_emitters": true})");
 }
 
 // The running means after each of the pass counts in `keep` (the render runs max(keep) passes).
